@@ -1,0 +1,100 @@
+#include "basalFriction.H"
+#include "error.H"
+
+#include <string>
+
+Foam::granflow::basalFriction::basalFriction(const dictionary& dict)
+{
+    if (!dict.found("frictionLaw"))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Missing entry frictionLaw; valid laws: " << gf_friction_names()
+            << exit(FatalIOError);
+    }
+    const word lawName(dict.get<word>("frictionLaw"));
+    if (gf_friction_init(&law_, lawName.c_str()) != GF_SUCCESS)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid entry frictionLaw " << lawName << ": " << gf_error_detail()
+            << exit(FatalIOError);
+    }
+
+    const gf_friction_type& t = *law_.type;
+    const word coeffsName(lawName + "Coeffs");
+    if (t.n_params == 0)
+    {
+        return;
+    }
+    if (!dict.isDict(coeffsName))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Missing sub-dictionary " << coeffsName << " with the coefficients of friction law "
+            << lawName << exit(FatalIOError);
+    }
+    const dictionary& coeffs = dict.subDict(coeffsName);
+
+    for (size_t i = 0; i < t.n_params; ++i)
+    {
+        const gf_friction_param& p = t.params[i];
+        if (!coeffs.found(p.name))
+        {
+            FatalIOErrorInFunction(coeffs)
+                << "Missing entry " << coeffsName << '/' << p.name << " (" << p.description
+                << ", unit " << p.unit << ", allowed range [" << p.min << ", " << p.max
+                << "], documented default " << p.default_value << ')' << exit(FatalIOError);
+        }
+        const scalar value = coeffs.get<scalar>(p.name);
+        if (gf_friction_set(&law_, p.name, value) != GF_SUCCESS)
+        {
+            FatalIOErrorInFunction(coeffs)
+                << "Invalid entry " << coeffsName << '/' << p.name << ": " << gf_error_detail()
+                << exit(FatalIOError);
+        }
+    }
+    for (const word& key : coeffs.toc())
+    {
+        double unused;
+        if (gf_friction_get(&law_, key.c_str(), &unused) != GF_SUCCESS)
+        {
+            FatalIOErrorInFunction(coeffs)
+                << "Unknown entry " << coeffsName << '/' << key << ": " << gf_error_detail()
+                << exit(FatalIOError);
+        }
+    }
+    if (gf_friction_check(&law_) != GF_SUCCESS)
+    {
+        FatalIOErrorInFunction(coeffs)
+            << "Invalid coefficients in " << coeffsName << ": " << gf_error_detail()
+            << exit(FatalIOError);
+    }
+}
+
+
+void Foam::granflow::basalFriction::evaluate
+(
+    const areaScalarField& h,
+    const areaVectorField& Us,
+    const areaScalarField& pb,
+    const scalar rho,
+    const scalar g,
+    areaScalarField& tau,
+    areaScalarField& nu
+) const
+{
+    forAll(h, facei)
+    {
+        const gf_friction_state s{h[facei], mag(Us[facei]), pb[facei], rho, g};
+        gf_friction_result r;
+        if (gf_friction_eval(&law_, &s, &r) != GF_SUCCESS)
+        {
+            FatalErrorInFunction
+                << "Friction law " << lawName() << " failed on face " << facei
+                << " (h = " << s.h << ", |Us| = " << s.speed << ", pb = " << s.pb
+                << "): " << gf_error_detail() << exit(FatalError);
+        }
+        tau[facei] = r.tau;
+        nu[facei] = r.nu;
+    }
+    tau.correctBoundaryConditions();
+    nu.correctBoundaryConditions();
+}

@@ -1,0 +1,129 @@
+/*---------------------------------------------------------------------------*\
+    granflow — gfFrictionField
+
+Description
+    Evaluates the basal friction law of constant/granularProperties on the
+    area mesh for the selected times and writes
+        tauB  |tau_b| [Pa]   basal shear stress
+        nuB   nu      [m/s]  implicit friction coefficient, tau_b/rho = nu Us
+        pbB   p_b     [Pa]   basal pressure used (field pb if present, else
+                             the lithostatic rho h max(0, -g.n))
+    from the fields h and Us.  The formulas are libgranflow's.
+
+Usage
+    gfFrictionField [-time ...] [-latestTime]
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "faCFD.H"
+#include "timeSelector.H"
+#include "uniformDimensionedFields.H"
+#include "basalFriction.H"
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Evaluate the basal friction law of constant/granularProperties"
+        " (libgranflow) on the fields h and Us; write tauB, nuB and pbB"
+    );
+    timeSelector::addOptions(true, false);
+
+    #include "setRootCase.H"
+    #include "createTime.H"
+    instantList timeDirs = timeSelector::select0(runTime, args);
+    #include "createMesh.H"
+    #include "createFaMesh.H"
+
+    IOdictionary granularProperties
+    (
+        IOobject
+        (
+            "granularProperties",
+            runTime.constant(),
+            mesh,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE
+        )
+    );
+    const granflow::basalFriction friction(granularProperties);
+    const scalar rho = granularProperties.get<scalar>("rho");
+    if (!(rho > 0))
+    {
+        FatalIOErrorInFunction(granularProperties)
+            << "Invalid entry rho " << rho << ": the flow density must be > 0 kg/m3"
+            << exit(FatalIOError);
+    }
+
+    const uniformDimensionedVectorField g
+    (
+        IOobject
+        (
+            "g",
+            runTime.constant(),
+            mesh,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE
+        )
+    );
+    Info<< "Friction law " << friction.lawName() << ", rho = " << rho
+        << ", g = " << g.value() << nl << endl;
+
+    forAll(timeDirs, timei)
+    {
+        runTime.setTime(timeDirs[timei], timei);
+        Info<< "Time = " << runTime.timeName() << endl;
+
+        const areaScalarField h
+        (
+            IOobject("h", runTime.timeName(), mesh, IOobject::MUST_READ),
+            aMesh
+        );
+        const areaVectorField Us
+        (
+            IOobject("Us", runTime.timeName(), mesh, IOobject::MUST_READ),
+            aMesh
+        );
+
+        IOobject pbHeader("pb", runTime.timeName(), mesh, IOobject::MUST_READ);
+        areaScalarField pb
+        (
+            IOobject("pbB", runTime.timeName(), mesh),
+            aMesh,
+            dimensionedScalar(dimPressure, Zero)
+        );
+        if (pbHeader.typeHeaderOk<areaScalarField>(true))
+        {
+            pb.primitiveFieldRef() = areaScalarField(pbHeader, aMesh).primitiveField();
+        }
+        else
+        {
+            const vectorField& n = aMesh.faceAreaNormals().primitiveField();
+            pb.primitiveFieldRef() = rho*h.primitiveField()*max(-(g.value() & n), scalar(0));
+        }
+
+        areaScalarField tau
+        (
+            IOobject("tauB", runTime.timeName(), mesh),
+            aMesh,
+            dimensionedScalar(sqr(dimVelocity), Zero)
+        );
+        areaScalarField nu
+        (
+            IOobject("nuB", runTime.timeName(), mesh),
+            aMesh,
+            dimensionedScalar(dimVelocity, Zero)
+        );
+        friction.evaluate(h, Us, pb, rho, mag(g.value()), tau, nu);
+        tau *= dimensionedScalar("rho", dimDensity, rho);
+
+        Info<< "    max |tau_b| = " << gMax(tau.primitiveField()) << " Pa, max nu = "
+            << gMax(nu.primitiveField()) << " m/s" << nl << endl;
+        tau.write();
+        nu.write();
+        pb.write();
+    }
+
+    Info<< "End" << nl << endl;
+    return 0;
+}

@@ -1,0 +1,129 @@
+/*
+ * granflow — basal friction laws, selected by name from a table of types
+ * (the gsl_odeiv2_step_type pattern).
+ *
+ * Every law gives, for a local state (thickness h, speed |u|, basal pressure
+ * p_b), the basal shear per unit density tau = |tau_b|/rho [m^2/s^2] and its
+ * implicit coefficient nu [m/s] with
+ *
+ *     tau_b / rho = nu * u        (finite-area paper eq. 60),
+ *
+ * so that a solver can treat friction implicitly: the update
+ * u_new = u / (1 + dt nu / h) never reverses the velocity.
+ *
+ *   name      tau_b/rho                                  parameters (default)
+ *   coulomb   mu p_b/rho |u|/(|u|+u0)                    mu (0.5), u0 (0)
+ *   mu_i      mu(I_b) p_b/rho |u|/(|u|+u0), eqs. 24-26   mu_s (0.38), mu_2 (0.65),
+ *             mu = mu_s + (mu_2-mu_s)/(I_0/I_b + 1)       I_0 (0.3), d (0.005 m),
+ *             I_b = 5/2 |u| d/(h sqrt(p_b/rho_p))         rho_p (2500 kg/m^3),
+ *                                                         u0 (1e-4 m/s)  [Table 1]
+ *   voellmy   mu p_b/rho |u|/(|u|+u0) + g|u|^2/xi        mu (0.2), xi (1000 m/s^2),
+ *                                                         u0 (1e-4 m/s)
+ *   chezy     g |u|^2 / C^2, eq. 71                      C (40 m^0.5/s)
+ *   none      0
+ *
+ * u0 regularises |u|/|u| near rest (paper eq. 24).  With u0 = 0 (exact
+ * Coulomb, as in the Savage–Hutter papers) tau at rest is the static bound
+ * mu p_b/rho and nu is +INFINITY.  A negative p_b (lift-off) gives no
+ * Coulomb-type friction.
+ */
+#ifndef GRANFLOW_FRICTION_H
+#define GRANFLOW_FRICTION_H
+
+#include <stddef.h>
+
+#include "granflow/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define GF_FRICTION_MAX_PARAMS 8
+
+/* One coefficient of a friction law: its name, unit, documented default and
+ * the closed range of accepted values. */
+typedef struct gf_friction_param {
+    const char *name;
+    const char *unit;
+    const char *description;
+    double default_value;
+    double min;
+    double max;
+} gf_friction_param;
+
+/* Local state at which friction is evaluated (SI units when dimensional). */
+typedef struct gf_friction_state {
+    double h;      /* flow thickness, >= 0 */
+    double speed;  /* |u|, >= 0 */
+    double pb;     /* basal pressure p_b [Pa]; <= 0 means no contact */
+    double rho;    /* flow (bulk) density, > 0 */
+    double g;      /* gravitational acceleration magnitude, >= 0 */
+} gf_friction_state;
+
+typedef struct gf_friction_result {
+    double tau;  /* |tau_b| / rho */
+    double nu;   /* implicit coefficient: tau_b/rho = nu u */
+    double mu;   /* effective friction coefficient tau/(p_b/rho), 0 if p_b <= 0 */
+} gf_friction_result;
+
+typedef struct gf_friction_type {
+    const char *name;
+    const char *description;
+    size_t n_params;
+    const gf_friction_param *params;
+    /* Cross-parameter checks (e.g. mu_2 >= mu_s); NULL when none. */
+    gf_status (*check)(const double *p);
+    void (*eval)(const double *p, const gf_friction_state *s, gf_friction_result *r);
+} gf_friction_type;
+
+extern const gf_friction_type *const gf_friction_coulomb;
+extern const gf_friction_type *const gf_friction_mu_i;
+extern const gf_friction_type *const gf_friction_voellmy;
+extern const gf_friction_type *const gf_friction_chezy;
+extern const gf_friction_type *const gf_friction_none;
+
+/* A friction law with its coefficients. */
+typedef struct gf_friction {
+    const gf_friction_type *type;
+    double p[GF_FRICTION_MAX_PARAMS];
+} gf_friction;
+
+/* NULL-terminated table of all laws. */
+const gf_friction_type *const *gf_friction_types(void);
+
+/* "coulomb, mu_i, voellmy, chezy, none" — for error messages. */
+const char *gf_friction_names(void);
+
+/* Type by name; NULL when unknown. */
+const gf_friction_type *gf_friction_lookup(const char *name);
+
+/* Initialise law `name` with its default coefficients.  GF_ENOTFOUND (detail
+ * lists the valid names) for an unknown name. */
+gf_status gf_friction_init(gf_friction *f, const char *name);
+
+/* Set coefficient `key`.  GF_ENOTFOUND for a key the law does not have
+ * (detail lists its keys), GF_EDOM / GF_ENONFINITE for a value outside the
+ * documented range (detail names key, value and range). */
+gf_status gf_friction_set(gf_friction *f, const char *key, double value);
+
+/* Value of coefficient `key` in *value. */
+gf_status gf_friction_get(const gf_friction *f, const char *key, double *value);
+
+/* Check all coefficients, including relations between them. */
+gf_status gf_friction_check(const gf_friction *f);
+
+/* Evaluate the law.  GF_ENONFINITE / GF_EDOM for a non-finite or negative
+ * thickness, speed, density or gravity. */
+gf_status gf_friction_eval(const gf_friction *f, const gf_friction_state *s,
+                           gf_friction_result *r);
+
+/* Explicit friction step that never reverses the motion: the velocity
+ * component u reduced in magnitude by decel_dt >= 0 (deceleration times time
+ * step), stopping at zero: sgn(u) max(0, |u| - decel_dt). */
+double gf_friction_decelerate(double u, double decel_dt);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

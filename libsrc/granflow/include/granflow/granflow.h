@@ -1,0 +1,13 @@
+/* granflow — umbrella header: the whole public API of libgranflow. */
+#ifndef GRANFLOW_GRANFLOW_H
+#define GRANFLOW_GRANFLOW_H
+
+#include "granflow/status.h"
+#include "granflow/earth_pressure.h"
+#include "granflow/source.h"
+#include "granflow/friction.h"
+#include "granflow/topography.h"
+
+#define GRANFLOW_VERSION "0.1.0"
+
+#endif

@@ -1,0 +1,235 @@
+#include "granflow/friction.h"
+#include "internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Coulomb-type part mu p_b/rho |u|/(|u|+u0) and its implicit coefficient. */
+static void coulomb_part(double mu, double u0, const gf_friction_state *s, double *tau, double *nu)
+{
+    const double p = s->pb > 0.0 ? s->pb / s->rho : 0.0;
+    if (p == 0.0 || mu == 0.0) {
+        *tau = 0.0;
+        *nu = 0.0;
+        return;
+    }
+    const double denom = s->speed + u0;
+    if (denom == 0.0) { /* exact Coulomb at rest: static bound, infinite stiffness */
+        *tau = mu * p;
+        *nu = HUGE_VAL;
+        return;
+    }
+    *nu = mu * p / denom;      /* finite-area paper eq. 60 */
+    *tau = *nu * s->speed;     /* eq. 24 */
+}
+
+/* ---- coulomb ---------------------------------------------------------- */
+static const gf_friction_param coulomb_params[] = {
+    {"mu", "-", "bed friction coefficient tan(delta)", 0.5, 0.0, 10.0},
+    {"u0", "m/s", "regularisation speed of |u|/|u| (0 = exact Coulomb)", 0.0, 0.0, 1.0},
+};
+static void coulomb_eval(const double *p, const gf_friction_state *s, gf_friction_result *r)
+{
+    coulomb_part(p[0], p[1], s, &r->tau, &r->nu);
+}
+static const gf_friction_type coulomb_type = {
+    "coulomb", "Coulomb friction tau_b = mu p_b u/(|u|+u0)", 2, coulomb_params, NULL, coulomb_eval};
+
+/* ---- mu(I) -------------------------------------------------------------- */
+static const gf_friction_param mu_i_params[] = {
+    {"mu_s", "-", "friction coefficient at I -> 0 (Table 1: 0.38)", 0.38, 0.0, 10.0},
+    {"mu_2", "-", "friction coefficient at I -> infinity (Table 1: 0.65)", 0.65, 0.0, 10.0},
+    {"I_0", "-", "reference inertial number (Table 1: 0.3)", 0.3, 1e-12, 1e6},
+    {"d", "m", "particle diameter (Table 1: 0.005)", 0.005, 1e-12, 10.0},
+    {"rho_p", "kg/m^3", "particle density (Table 1: 2500)", 2500.0, 1e-12, 1e6},
+    {"u0", "m/s", "regularisation speed (Table 1: 1e-4)", 1e-4, 0.0, 1.0},
+};
+static gf_status mu_i_check(const double *p)
+{
+    if (p[1] < p[0])
+        return gf_fail(GF_EPHYS,
+                       "mu(I) friction: mu_2 = %g is below mu_s = %g; friction must not "
+                       "decrease with the inertial number (finite-area paper eq. 25)",
+                       p[1], p[0]);
+    return GF_SUCCESS;
+}
+static void mu_i_eval(const double *p, const gf_friction_state *s, gf_friction_result *r)
+{
+    const double mu_s = p[0], mu_2 = p[1], I0 = p[2], d = p[3], rho_p = p[4], u0 = p[5];
+    double mu = mu_s;
+    if (s->pb > 0.0 && s->speed > 0.0) {
+        if (s->h > 0.0) {
+            const double I = 2.5 * s->speed * d / (s->h * sqrt(s->pb / rho_p)); /* eq. 26 */
+            mu = mu_s + (mu_2 - mu_s) * I / (I0 + I);                          /* eq. 25 */
+        } else {
+            mu = mu_2; /* I -> infinity */
+        }
+    }
+    coulomb_part(mu, u0, s, &r->tau, &r->nu);
+}
+static const gf_friction_type mu_i_type = {
+    "mu_i", "mu(I) rheology, finite-area paper eqs. 24-26", 6, mu_i_params, mu_i_check, mu_i_eval};
+
+/* ---- Voellmy ------------------------------------------------------------ */
+static const gf_friction_param voellmy_params[] = {
+    {"mu", "-", "dry (Coulomb) friction coefficient", 0.2, 0.0, 10.0},
+    {"xi", "m/s^2", "turbulent friction coefficient", 1000.0, 1e-12, 1e9},
+    {"u0", "m/s", "regularisation speed of the Coulomb part", 1e-4, 0.0, 1.0},
+};
+static void voellmy_eval(const double *p, const gf_friction_state *s, gf_friction_result *r)
+{
+    double tau, nu;
+    coulomb_part(p[0], p[2], s, &tau, &nu);
+    const double k = s->g / p[1];
+    r->tau = tau + k * s->speed * s->speed;
+    r->nu = nu + k * s->speed;
+}
+static const gf_friction_type voellmy_type = {
+    "voellmy", "Voellmy: Coulomb plus turbulent g|u|^2/xi", 3, voellmy_params, NULL, voellmy_eval};
+
+/* ---- Chezy -------------------------------------------------------------- */
+static const gf_friction_param chezy_params[] = {
+    {"C", "m^0.5/s", "Chezy coefficient (section 6.1.3: 40)", 40.0, 1e-12, 1e9},
+};
+static void chezy_eval(const double *p, const gf_friction_state *s, gf_friction_result *r)
+{
+    const double k = s->g / (p[0] * p[0]); /* eq. 71: tau_b = rho g/C^2 |u| u */
+    r->nu = k * s->speed;
+    r->tau = r->nu * s->speed;
+}
+static const gf_friction_type chezy_type = {
+    "chezy", "Chezy friction, finite-area paper eq. 71", 1, chezy_params, NULL, chezy_eval};
+
+/* ---- none --------------------------------------------------------------- */
+static void none_eval(const double *p, const gf_friction_state *s, gf_friction_result *r)
+{
+    (void)p;
+    (void)s;
+    r->tau = 0.0;
+    r->nu = 0.0;
+}
+static const gf_friction_type none_type = {"none", "no basal friction", 0, NULL, NULL, none_eval};
+
+const gf_friction_type *const gf_friction_coulomb = &coulomb_type;
+const gf_friction_type *const gf_friction_mu_i = &mu_i_type;
+const gf_friction_type *const gf_friction_voellmy = &voellmy_type;
+const gf_friction_type *const gf_friction_chezy = &chezy_type;
+const gf_friction_type *const gf_friction_none = &none_type;
+
+static const gf_friction_type *const all_types[] = {&coulomb_type, &mu_i_type, &voellmy_type,
+                                                     &chezy_type, &none_type, NULL};
+
+const gf_friction_type *const *gf_friction_types(void) { return all_types; }
+
+const char *gf_friction_names(void) { return "coulomb, mu_i, voellmy, chezy, none"; }
+
+const gf_friction_type *gf_friction_lookup(const char *name)
+{
+    if (!name)
+        return NULL;
+    for (size_t i = 0; all_types[i]; ++i)
+        if (strcmp(all_types[i]->name, name) == 0)
+            return all_types[i];
+    return NULL;
+}
+
+gf_status gf_friction_init(gf_friction *f, const char *name)
+{
+    if (!f)
+        return gf_fail(GF_EINVAL, "gf_friction_init: null friction pointer");
+    const gf_friction_type *t = gf_friction_lookup(name);
+    if (!t)
+        return gf_fail(GF_ENOTFOUND, "unknown friction law '%s'; valid names: %s",
+                       name ? name : "(null)", gf_friction_names());
+    memset(f, 0, sizeof *f);
+    f->type = t;
+    for (size_t i = 0; i < t->n_params; ++i)
+        f->p[i] = t->params[i].default_value;
+    return GF_SUCCESS;
+}
+
+static int param_index(const gf_friction_type *t, const char *key)
+{
+    for (size_t i = 0; i < t->n_params; ++i)
+        if (strcmp(t->params[i].name, key) == 0)
+            return (int)i;
+    return -1;
+}
+
+static gf_status unknown_key(const gf_friction_type *t, const char *key)
+{
+    char names[256] = "";
+    size_t used = 0;
+    for (size_t i = 0; i < t->n_params && used < sizeof names; ++i)
+        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", i ? ", " : "",
+                                 t->params[i].name);
+    return gf_fail(GF_ENOTFOUND, "friction law '%s' has no coefficient '%s'; its coefficients: %s",
+                   t->name, key, t->n_params ? names : "(none)");
+}
+
+gf_status gf_friction_set(gf_friction *f, const char *key, double value)
+{
+    if (!f || !f->type || !key)
+        return gf_fail(GF_EINVAL, "gf_friction_set: null argument or uninitialised law");
+    const int i = param_index(f->type, key);
+    if (i < 0)
+        return unknown_key(f->type, key);
+    const gf_friction_param *p = &f->type->params[i];
+    char what[128];
+    snprintf(what, sizeof what, "friction law '%s' coefficient %s [%s]", f->type->name, key, p->unit);
+    gf_status st = gf_check_range(what, value, p->min, p->max);
+    if (st)
+        return st;
+    f->p[i] = value;
+    return GF_SUCCESS;
+}
+
+gf_status gf_friction_get(const gf_friction *f, const char *key, double *value)
+{
+    if (!f || !f->type || !key || !value)
+        return gf_fail(GF_EINVAL, "gf_friction_get: null argument or uninitialised law");
+    const int i = param_index(f->type, key);
+    if (i < 0)
+        return unknown_key(f->type, key);
+    *value = f->p[i];
+    return GF_SUCCESS;
+}
+
+gf_status gf_friction_check(const gf_friction *f)
+{
+    if (!f || !f->type)
+        return gf_fail(GF_EINVAL, "gf_friction_check: uninitialised friction law");
+    for (size_t i = 0; i < f->type->n_params; ++i) {
+        const gf_friction_param *p = &f->type->params[i];
+        gf_status st = gf_check_range(p->name, f->p[i], p->min, p->max);
+        if (st)
+            return st;
+    }
+    return f->type->check ? f->type->check(f->p) : GF_SUCCESS;
+}
+
+gf_status gf_friction_eval(const gf_friction *f, const gf_friction_state *s, gf_friction_result *r)
+{
+    if (!f || !f->type || !s || !r)
+        return gf_fail(GF_EINVAL, "gf_friction_eval: null argument or uninitialised law");
+    gf_status st;
+    if ((st = gf_check_range("flow thickness h", s->h, 0.0, HUGE_VAL)) ||
+        (st = gf_check_range("speed |u|", s->speed, 0.0, HUGE_VAL)) ||
+        (st = gf_check_range("density rho", s->rho, 1e-300, HUGE_VAL)) ||
+        (st = gf_check_range("gravity g", s->g, 0.0, HUGE_VAL)))
+        return st;
+    if (!isfinite(s->pb))
+        return gf_fail(GF_ENONFINITE, "basal pressure p_b = %g is not a finite number", s->pb);
+    f->type->eval(f->p, s, r);
+    r->mu = s->pb > 0.0 ? r->tau / (s->pb / s->rho) : 0.0;
+    return GF_SUCCESS;
+}
+
+double gf_friction_decelerate(double u, double decel_dt)
+{
+    const double m = fabs(u) - decel_dt;
+    if (m <= 0.0)
+        return 0.0;
+    return u > 0.0 ? m : -m;
+}

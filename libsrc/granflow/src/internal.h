@@ -1,0 +1,21 @@
+/* Internal helpers of libgranflow: not installed, not part of the API. */
+#ifndef GRANFLOW_INTERNAL_H
+#define GRANFLOW_INTERNAL_H
+
+#include "granflow/status.h"
+
+#define GF_PI 3.14159265358979323846
+#define GF_RAD2DEG (180.0 / GF_PI)
+
+/* Record a formatted detail message for gf_error_detail() and return status. */
+gf_status gf_fail(gf_status status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* GF_SUCCESS when lo <= value <= hi and finite, otherwise a message naming
+ * the parameter, its value and the range.  */
+gf_status gf_check_range(const char *name, double value, double lo, double hi);
+
+#endif

@@ -1,0 +1,181 @@
+/* Friction-law table: values against independent Python computations of
+ * finite-area paper eqs. 24-26, 60, 71; selection by name; bad input. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+#include "../gf_test.h"
+
+#include "granflow/friction.h"
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+/* h = 0.5 m, |u| = 2 m/s, rho = 1500, p_b = rho g cos(35 deg) h */
+static gf_friction_state reference_state(void)
+{
+    gf_friction_state s = {0.5, 2.0, 1500 * 9.81 * cos(35 * DEG) * 0.5, 1500.0, 9.81};
+    return s;
+}
+
+static void mu_i_matches_table1_reference(void **state)
+{
+    (void)state;
+    gf_friction f;
+    gf_friction_result r;
+    assert_int_equal(gf_friction_init(&f, "mu_i"), GF_SUCCESS); /* Table 1 defaults */
+    const gf_friction_state s = reference_state();
+    assert_int_equal(gf_friction_eval(&f, &s, &r), GF_SUCCESS);
+    assert_close(s.pb, 6026.911165856257, 1e-9);
+    assert_close(r.tau, 1.631897387669238, 1e-12);
+    assert_close(r.nu * s.speed, r.tau, 1e-14);
+    assert_close(r.mu * (2.0 + 1e-4) / 2.0, 0.4061729808921356, 1e-12);
+}
+
+static void mu_i_limits_are_mu_s_and_mu_2(void **state)
+{
+    (void)state;
+    gf_friction f;
+    gf_friction_result r;
+    gf_friction_init(&f, "mu_i");
+    gf_friction_set(&f, "u0", 0.0);
+    gf_friction_state s = reference_state();
+    s.speed = 1e-12; /* I -> 0 */
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.mu, 0.38, 1e-9);
+    s.speed = 1e9; /* I -> infinity */
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.mu, 0.65, 1e-6);
+}
+
+static void coulomb_chezy_voellmy_none(void **state)
+{
+    (void)state;
+    gf_friction f;
+    gf_friction_result r;
+    gf_friction_state s = reference_state();
+    gf_friction_init(&f, "coulomb");
+    gf_friction_set(&f, "mu", tan(30 * DEG));
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.tau, tan(30 * DEG) * 9.81 * cos(35 * DEG) * 0.5, 1e-12);
+    s.speed = 0.0; /* exact Coulomb at rest: static bound, infinite stiffness */
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.tau, tan(30 * DEG) * 9.81 * cos(35 * DEG) * 0.5, 1e-12);
+    assert_true(isinf(r.nu));
+    s = reference_state();
+    gf_friction_init(&f, "chezy"); /* C = 40 default, eq. 71 */
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.tau, 0.024525, 1e-15);
+    gf_friction_init(&f, "voellmy");
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.tau, 0.8427879780485986, 1e-12);
+    gf_friction_init(&f, "none");
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.tau, 0.0, 0);
+    assert_close(r.nu, 0.0, 0);
+}
+
+static void no_contact_no_coulomb_friction(void **state)
+{
+    (void)state;
+    gf_friction f;
+    gf_friction_result r;
+    gf_friction_state s = reference_state();
+    s.pb = -10.0; /* lift-off */
+    gf_friction_init(&f, "mu_i");
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.tau, 0.0, 0);
+    s.h = 0.0;
+    s.pb = 0.0;
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.tau, 0.0, 0);
+}
+
+static void implicit_update_never_reverses_velocity(void **state)
+{
+    (void)state;
+    const char *laws[] = {"coulomb", "mu_i", "voellmy", "chezy"};
+    gf_friction_state s = reference_state();
+    for (size_t i = 0; i < 4; ++i) {
+        gf_friction f;
+        gf_friction_result r;
+        gf_friction_init(&f, laws[i]);
+        if (i == 0)
+            gf_friction_set(&f, "u0", 1e-4);
+        gf_friction_eval(&f, &s, &r);
+        for (double dt = 1e-4; dt < 1e4; dt *= 10) {
+            const double u_new = s.speed / (1 + dt * r.nu / s.h);
+            assert_true(u_new >= 0 && u_new <= s.speed);
+        }
+    }
+    assert_close(gf_friction_decelerate(1.0, 0.25), 0.75, 1e-15);
+    assert_close(gf_friction_decelerate(-1.0, 0.25), -0.75, 1e-15);
+    assert_close(gf_friction_decelerate(0.1, 5.0), 0.0, 0);
+    assert_close(gf_friction_decelerate(-0.1, 5.0), 0.0, 0);
+}
+
+static void unknown_law_lists_valid_names(void **state)
+{
+    (void)state;
+    gf_friction f;
+    assert_int_equal(gf_friction_init(&f, "coulmb"), GF_ENOTFOUND);
+    assert_non_null(strstr(gf_error_detail(), "coulmb"));
+    assert_non_null(strstr(gf_error_detail(), "coulomb, mu_i, voellmy, chezy, none"));
+    assert_null(gf_friction_lookup("Coulomb"));
+    size_t n = 0;
+    for (const gf_friction_type *const *t = gf_friction_types(); *t; ++t, ++n)
+        assert_ptr_equal(gf_friction_lookup((*t)->name), *t);
+    assert_int_equal(n, 5);
+}
+
+static void bad_coefficients_name_key_and_range(void **state)
+{
+    (void)state;
+    gf_friction f;
+    double v;
+    gf_friction_init(&f, "mu_i");
+    assert_int_equal(gf_friction_set(&f, "mu_s", -0.1), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "mu_s"));
+    assert_non_null(strstr(gf_error_detail(), "[0, 10]"));
+    assert_int_equal(gf_friction_set(&f, "mu_s", NAN), GF_ENONFINITE);
+    assert_int_equal(gf_friction_set(&f, "xi", 100), GF_ENOTFOUND);
+    assert_non_null(strstr(gf_error_detail(), "mu_s, mu_2, I_0, d, rho_p, u0"));
+    assert_int_equal(gf_friction_get(&f, "mu_s", &v), GF_SUCCESS);
+    assert_close(v, 0.38, 0); /* unchanged by the rejected sets */
+    assert_int_equal(gf_friction_set(&f, "mu_s", 0.7), GF_SUCCESS);
+    assert_int_equal(gf_friction_check(&f), GF_EPHYS); /* mu_2 = 0.65 < mu_s */
+    assert_non_null(strstr(gf_error_detail(), "mu_2"));
+}
+
+static void bad_state_is_an_error_not_nan(void **state)
+{
+    (void)state;
+    gf_friction f;
+    gf_friction_result r;
+    gf_friction_init(&f, "mu_i");
+    gf_friction_state s = reference_state();
+    s.h = -1e-3;
+    assert_int_equal(gf_friction_eval(&f, &s, &r), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "thickness"));
+    s = reference_state();
+    s.speed = NAN;
+    assert_int_equal(gf_friction_eval(&f, &s, &r), GF_ENONFINITE);
+    s = reference_state();
+    s.pb = INFINITY;
+    assert_int_equal(gf_friction_eval(&f, &s, &r), GF_ENONFINITE);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(mu_i_matches_table1_reference),
+        cmocka_unit_test(mu_i_limits_are_mu_s_and_mu_2),
+        cmocka_unit_test(coulomb_chezy_voellmy_none),
+        cmocka_unit_test(no_contact_no_coulomb_friction),
+        cmocka_unit_test(implicit_update_never_reverses_velocity),
+        cmocka_unit_test(unknown_law_lists_valid_names),
+        cmocka_unit_test(bad_coefficients_name_key_and_range),
+        cmocka_unit_test(bad_state_is_an_error_not_nan),
+    };
+    return cmocka_run_group_tests_name("friction", tests, NULL, NULL);
+}
