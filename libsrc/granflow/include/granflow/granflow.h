@@ -7,6 +7,9 @@
 #include "granflow/source.h"
 #include "granflow/friction.h"
 #include "granflow/topography.h"
+#include "granflow/exact.h"
+#include "granflow/kinetic1d.h"
+#include "granflow/dg1d.h"
 
 #define GRANFLOW_VERSION "0.1.0"
 

@@ -1,0 +1,131 @@
+/*
+ * granflow — 1D Savage–Hutter solvers: common configuration and interface.
+ *
+ * Equations (rkdg paper eqs. 1-2; kinetic paper eqs. 1, 13), on a bed of
+ * inclination zeta(x) and curvature kappa(x):
+ *
+ *   h_t + (hu)_x = 0,
+ *   (hu)_t + (hu^2 + beta h^2/2)_x = h g sin(zeta) - tau_b/rho,
+ *   beta = epsilon K cos(zeta),
+ *   tau_b/rho = friction law at basal pressure p_b/rho = h max(0, g cos(zeta) + chi kappa u^2)
+ *
+ * Dimensionless Savage–Hutter: epsilon = H/L, g = 1, Coulomb friction
+ * mu = tan(delta) with u0 = 0 gives h s(u) of rkdg eq. 2.  Dimensional form:
+ * epsilon = g = 9.81 m/s^2, kappa in 1/m, any friction law (e.g. mu_i).
+ *
+ * A solver is an object made from a type (the gsl_odeiv2_step_type pattern):
+ *   gf_sh1d_rkdg     — P0-P2 Runge–Kutta discontinuous Galerkin (dg1d.h)
+ *   gf_sh1d_kinetic  — kinetic Schemes 1, 2, 3 (kinetic1d.h)
+ *
+ *   gf_sh1d_config c;  gf_sh1d_config_init(&c);  c.n_cells = 256; ...
+ *   gf_sh1d *s;  gf_sh1d_alloc(gf_sh1d_rkdg, &c, &s);
+ *   gf_sh1d_set_initial(s, pile, &params);
+ *   gf_sh1d_advance_to(s, 12.0);
+ *   gf_sh1d_means(s, h, u);  gf_sh1d_free(s);
+ */
+#ifndef GRANFLOW_SH1D_H
+#define GRANFLOW_SH1D_H
+
+#include <stddef.h>
+
+#include "granflow/earth_pressure.h"
+#include "granflow/friction.h"
+#include "granflow/status.h"
+#include "granflow/topography.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum gf_bc {
+    GF_BC_TRANSMISSIVE = 0, /* zero-gradient outflow */
+    GF_BC_WALL = 1,         /* reflecting wall: u = 0 */
+    GF_BC_PERIODIC = 2
+} gf_bc;
+
+typedef struct gf_sh1d_config {
+    size_t n_cells;          /* number of cells N, >= 4 */
+    double x_min, x_max;     /* domain */
+    double epsilon;          /* beta = epsilon K cos(zeta) */
+    double g;                /* gravity scale of the source: 1 or 9.81 */
+    double chi;              /* curvature factor chi of rkdg eq. 2 (1) */
+    double zeta;             /* constant inclination [rad] when topo is NULL */
+    const gf_topography *topo; /* variable zeta(x), kappa(x); not owned; or NULL */
+    gf_earth_pressure earth_pressure;
+    gf_friction friction;
+    gf_bc bc_left, bc_right;
+    double cfl;              /* Courant number; 0 = the scheme's default */
+    double dt_fixed;         /* > 0: fixed step, rejected if it breaks the CFL bound */
+    double h_eps;            /* dry threshold (rkdg: 1e-10) */
+    double h_semi;           /* semi-wet threshold (rkdg: 1e-6) */
+    /* RKDG */
+    int degree;              /* polynomial degree k: 0, 1, 2 */
+    int limiter;             /* 1: minmod limiter of rkdg eq. 13, 0: none */
+    double gamma;            /* minmod gamma (rkdg: 0.5) */
+    double tvb_m;            /* TVB constant M; 0 = strict minmod (the paper's) */
+    /* kinetic */
+    int scheme;              /* 1, 2 or 3 (kinetic paper section 3) */
+} gf_sh1d_config;
+
+/* Defaults: rkdg paper values (k = 2, gamma = 0.5, h_eps = 1e-10,
+ * h_semi = 1e-6), Scheme 3, epsilon = g = chi = 1, zeta = 0, isotropic
+ * earth pressure, no friction, transmissive boundaries, N = 256 on [0, 30]. */
+void gf_sh1d_config_init(gf_sh1d_config *c);
+
+typedef struct gf_sh1d_type gf_sh1d_type;
+typedef struct gf_sh1d gf_sh1d;
+
+extern const gf_sh1d_type *const gf_sh1d_rkdg;
+extern const gf_sh1d_type *const gf_sh1d_kinetic;
+
+/* "rkdg" or "kinetic"; NULL otherwise. */
+const gf_sh1d_type *gf_sh1d_type_lookup(const char *name);
+const char *gf_sh1d_type_name(const gf_sh1d_type *type);
+
+/* Initial data: depth and velocity at x. */
+typedef void (*gf_sh1d_initial_fn)(double x, void *ctx, double *h, double *u);
+
+/* Check the configuration and make a solver. */
+gf_status gf_sh1d_alloc(const gf_sh1d_type *type, const gf_sh1d_config *cfg, gf_sh1d **out);
+void gf_sh1d_free(gf_sh1d *s);
+
+/* Project the initial data (Gauss quadrature; rkdg eq. 8) and set t = 0.
+ * Negative or non-finite depths are an error. */
+gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx);
+
+/* One time step of at most dt_max (the CFL step, or dt_fixed).
+ * GF_ENONFINITE if the solution stops being finite, GF_EDOM if dt_fixed
+ * breaks the CFL bound. */
+gf_status gf_sh1d_step(gf_sh1d *s, double dt_max);
+
+/* Steps until time t (the last step shortened to land on t). */
+gf_status gf_sh1d_advance_to(gf_sh1d *s, double t);
+
+double gf_sh1d_time(const gf_sh1d *s);
+size_t gf_sh1d_steps(const gf_sh1d *s);
+size_t gf_sh1d_n_cells(const gf_sh1d *s);
+double gf_sh1d_dx(const gf_sh1d *s);
+double gf_sh1d_cell_centre(const gf_sh1d *s, size_t i);
+const gf_sh1d_config *gf_sh1d_get_config(const gf_sh1d *s);
+
+/* Cell means of h and u (u = q/h, 0 where dry); arrays of n_cells. */
+void gf_sh1d_means(const gf_sh1d *s, double *h, double *u);
+
+/* Point values of the numerical solution at x (the DG polynomial; the cell
+ * value for the kinetic schemes). */
+gf_status gf_sh1d_eval(const gf_sh1d *s, double x, double *h, double *u);
+
+/* Total mass: sum of cell means times dx. */
+double gf_sh1d_mass(const gf_sh1d *s);
+
+/* Smallest depth over all quadrature and interface points. */
+double gf_sh1d_min_depth(const gf_sh1d *s);
+
+/* Largest |u| over the cell means. */
+double gf_sh1d_max_speed(const gf_sh1d *s);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

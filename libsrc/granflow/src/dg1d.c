@@ -1,0 +1,492 @@
+#include "granflow/dg1d.h"
+#include "granflow/source.h"
+#include "internal.h"
+#include "sh1d_internal.h"
+
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXM 3 /* modes of P2 */
+#define MAXG 3 /* Gauss points of P2 */
+
+typedef struct dg {
+    int m, ng;                  /* modes, Gauss points */
+    double xg[MAXG], wg[MAXG];  /* Gauss rule on [-1, 1], weights sum 2 */
+    double pg[MAXG][MAXM];      /* P_m(x_g) */
+    double dpg[MAXG][MAXM];     /* P_m'(x_g) */
+    size_t nc;                  /* n + 2 cells with ghosts */
+    double *h, *q;              /* solution, nc * m */
+    double *h0, *q0, *h1, *q1;  /* RK stages */
+    double *rh, *rq;            /* right-hand side without friction, nc * m */
+    double *fm;                 /* friction term of the q modes per unit time, nc * m */
+    double *cap;                /* friction capacity per unit time (cell mean), nc */
+    double *k;                  /* earth-pressure coefficient per cell, nc */
+    double *ubar;               /* scratch: mean velocities, nc */
+    unsigned char *moving;      /* M_j, nc */
+    unsigned char *stopped;     /* stopped by friction in the last Euler stage, nc */
+    double *zg, *kg;            /* zeta, kappa at Gauss points, nc * ng */
+    double *zf;                 /* zeta at interfaces, n + 1 */
+    double *fh, *fqx;           /* interface fluxes, n + 1 */
+} dg;
+
+static double legendre(int m, double x)
+{
+    return m == 0 ? 1.0 : m == 1 ? x : 0.5 * (3.0 * x * x - 1.0);
+}
+static double dlegendre(int m, double x) { return m == 0 ? 0.0 : m == 1 ? 1.0 : 3.0 * x; }
+
+static void dg_free(gf_sh1d *s)
+{
+    dg *d = s->impl;
+    if (!d)
+        return;
+    free(d->h);
+    free(d->moving);
+    free(d);
+    s->impl = NULL;
+}
+
+static gf_status dg_init(gf_sh1d *s)
+{
+    const int k = s->cfg.degree;
+    dg *d = calloc(1, sizeof *d);
+    if (!d)
+        return gf_fail(GF_ENOMEM, "rkdg: out of memory");
+    d->m = k + 1;
+    d->ng = k + 1;
+    gsl_integration_glfixed_table *t = gsl_integration_glfixed_table_alloc((size_t)d->ng);
+    if (!t) {
+        free(d);
+        return gf_fail(GF_ENOMEM, "rkdg: out of memory");
+    }
+    for (int g = 0; g < d->ng; ++g) {
+        gsl_integration_glfixed_point(-1.0, 1.0, (size_t)g, &d->xg[g], &d->wg[g], t);
+        for (int m = 0; m < d->m; ++m) {
+            d->pg[g][m] = legendre(m, d->xg[g]);
+            d->dpg[g][m] = dlegendre(m, d->xg[g]);
+        }
+    }
+    gsl_integration_glfixed_table_free(t);
+
+    const size_t n = s->n, nc = n + 2, M = (size_t)d->m, G = (size_t)d->ng;
+    d->nc = nc;
+    const size_t total = 9 * nc * M + 3 * nc + 2 * nc * G + 3 * (n + 1);
+    double *blk = calloc(total, sizeof *blk);
+    unsigned char *flags = calloc(2 * nc, 1);
+    if (!blk || !flags) {
+        free(blk);
+        free(flags);
+        free(d);
+        return gf_fail(GF_ENOMEM, "rkdg: out of memory");
+    }
+    double *p = blk;
+    d->h = p; p += nc * M;
+    d->q = p; p += nc * M;
+    d->h0 = p; p += nc * M;
+    d->q0 = p; p += nc * M;
+    d->h1 = p; p += nc * M;
+    d->q1 = p; p += nc * M;
+    d->rh = p; p += nc * M;
+    d->rq = p; p += nc * M;
+    d->fm = p; p += nc * M;
+    d->cap = p; p += nc;
+    d->k = p; p += nc;
+    d->ubar = p; p += nc;
+    d->zg = p; p += nc * G;
+    d->kg = p; p += nc * G;
+    d->zf = p; p += n + 1;
+    d->fh = p; p += n + 1;
+    d->fqx = p;
+    d->moving = flags;
+    d->stopped = flags + nc;
+    s->impl = d;
+
+    for (size_t c = 1; c <= n; ++c) {
+        const double xc = gf_sh1d_cell_centre(s, c - 1);
+        for (size_t g = 0; g < G; ++g)
+            gf_sh1d_bed(s, xc + 0.5 * s->dx * d->xg[g], &d->zg[c * G + g], &d->kg[c * G + g]);
+    }
+    for (size_t f = 0; f <= n; ++f) {
+        double kap;
+        gf_sh1d_bed(s, s->cfg.x_min + (double)f * s->dx, &d->zf[f], &kap);
+    }
+    for (size_t c = 0; c < nc; ++c)
+        d->k[c] = 1.0;
+    static const double w_gl[3] = {1.0, 0.5, 1.0 / 6.0};
+    s->cfl = s->cfg.cfl > 0.0 ? s->cfg.cfl : 0.9 * fmin(1.0 / (2.0 * k + 1.0), w_gl[k]);
+    return GF_SUCCESS;
+}
+
+/* ghost cells 0 and n+1 from the boundary conditions */
+static void fill_ghosts(const gf_sh1d *s, dg *d, double *h, double *q)
+{
+    const size_t n = s->n, M = (size_t)d->m;
+    for (int side = 0; side < 2; ++side) {
+        const gf_bc bc = side == 0 ? s->cfg.bc_left : s->cfg.bc_right;
+        const size_t gc = side == 0 ? 0 : n + 1;
+        const size_t in = side == 0 ? 1 : n;
+        const size_t per = side == 0 ? n : 1;
+        for (size_t m = 0; m < M; ++m) {
+            const double sg = (m % 2) ? -1.0 : 1.0;
+            if (bc == GF_BC_PERIODIC) {
+                h[gc * M + m] = h[per * M + m];
+                q[gc * M + m] = q[per * M + m];
+            } else if (bc == GF_BC_WALL) {
+                h[gc * M + m] = sg * h[in * M + m];
+                q[gc * M + m] = -sg * q[in * M + m];
+            } else {
+                h[gc * M + m] = h[in * M + m];
+                q[gc * M + m] = q[in * M + m];
+            }
+        }
+        d->moving[gc] = bc == GF_BC_PERIODIC ? d->moving[per] : d->moving[in];
+        d->k[gc] = bc == GF_BC_PERIODIC ? d->k[per] : d->k[in];
+    }
+}
+
+static inline double poly(const double *u, int M, double x)
+{
+    double v = u[0];
+    if (M > 1)
+        v += u[1] * x;
+    if (M > 2)
+        v += u[2] * 0.5 * (3.0 * x * x - 1.0);
+    return v;
+}
+static inline double right_value(const double *u, int M)
+{
+    double v = 0.0;
+    for (int m = 0; m < M; ++m)
+        v += u[m];
+    return v;
+}
+static inline double left_value(const double *u, int M)
+{
+    double v = 0.0;
+    for (int m = 0; m < M; ++m)
+        v += (m % 2) ? -u[m] : u[m];
+    return v;
+}
+
+/* point state: depth >= 0 and velocity (0 below h_semi) */
+static inline void point_state(const gf_sh1d *s, double h, double q, double *hp, double *up)
+{
+    *hp = h > 0.0 ? h : 0.0;
+    *up = *hp > s->cfg.h_semi ? q / *hp : 0.0;
+}
+
+static void update_k(const gf_sh1d *s, dg *d, const double *h, const double *q)
+{
+    const size_t n = s->n, M = (size_t)d->m;
+    for (size_t c = 0; c < d->nc; ++c)
+        d->ubar[c] = gf_sh1d_velocity(s, h[c * M], q[c * M]);
+    for (size_t c = 1; c <= n; ++c)
+        d->k[c] = gf_earth_pressure_k(&s->cfg.earth_pressure, d->ubar[c + 1] - d->ubar[c - 1]);
+}
+
+/* Right-hand side without friction (rh, rq), the friction term of every q
+ * mode (fm) and the friction capacity of the mean (cap), per unit time. */
+static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
+{
+    const size_t n = s->n;
+    const int M = d->m, G = d->ng;
+    const double eps = s->cfg.epsilon, grav = s->cfg.g, dx = s->dx;
+    fill_ghosts(s, d, h, q);
+    update_k(s, d, h, q);
+    fill_ghosts(s, d, h, q);
+
+    for (size_t f = 0; f <= n; ++f) { /* interface between cells f and f+1 */
+        const double cz = cos(d->zf[f]);
+        double hl, ul, hr, ur;
+        point_state(s, right_value(&h[f * M], M), right_value(&q[f * M], M), &hl, &ul);
+        point_state(s, left_value(&h[(f + 1) * M], M), left_value(&q[(f + 1) * M], M), &hr, &ur);
+        const double bl = eps * d->k[f] * cz, br = eps * d->k[f + 1] * cz;
+        const double al = fabs(ul) + sqrt(bl * hl), ar = fabs(ur) + sqrt(br * hr);
+        const double alpha = al > ar ? al : ar;
+        const double eta = (d->moving[f] || d->moving[f + 1]) ? 1.0 : 0.0;
+        const double ql = hl * ul, qr = hr * ur;
+        d->fh[f] = 0.5 * (ql + qr) - 0.5 * eta * alpha * (hr - hl); /* eq. 9 with eta */
+        d->fqx[f] = 0.5 * (ql * ul + 0.5 * bl * hl * hl + qr * ur + 0.5 * br * hr * hr) -
+                    0.5 * alpha * (qr - ql);
+    }
+    for (size_t c = 1; c <= n; ++c) {
+        const double *hc = &h[c * M], *qc = &q[c * M];
+        double vh[MAXM] = {0}, vq[MAXM] = {0}, sq[MAXM] = {0}, fr[MAXM] = {0};
+        double cap = 0.0;
+        for (int g = 0; g < G; ++g) {
+            const double zeta = d->zg[c * G + g], kap = d->kg[c * G + g];
+            double hp, up;
+            point_state(s, poly(hc, M, d->xg[g]), poly(qc, M, d->xg[g]), &hp, &up);
+            const double beta = eps * d->k[c] * cos(zeta);
+            const double f1 = hp * up, f2 = hp * up * up + 0.5 * beta * hp * hp;
+            const double src = hp * grav * sin(zeta);
+            const double tau = gf_sh1d_friction(s, hp, up, zeta, kap);
+            const double w = d->wg[g];
+            const double sgn = up > 0.0 ? 1.0 : (up < 0.0 ? -1.0 : 0.0);
+            cap += 0.5 * w * tau;
+            for (int m = 0; m < M; ++m) {
+                vh[m] += w * f1 * d->dpg[g][m];                    /* H_m of eq. 12 */
+                vq[m] += w * f2 * d->dpg[g][m];
+                sq[m] += 0.5 * dx * w * src * d->pg[g][m];
+                fr[m] -= 0.5 * w * sgn * tau * d->pg[g][m];
+            }
+        }
+        for (int m = 0; m < M; ++m) {
+            const double c2 = (2.0 * m + 1.0) / dx, sl = (m % 2) ? -1.0 : 1.0;
+            d->rh[c * M + m] = c2 * (vh[m] - (d->fh[c] - sl * d->fh[c - 1]));
+            d->rq[c * M + m] = c2 * (vq[m] - (d->fqx[c] - sl * d->fqx[c - 1]) + sq[m]);
+            d->fm[c * M + m] = (2.0 * m + 1.0) * fr[m];
+        }
+        d->cap[c] = cap;
+    }
+}
+
+static inline double minmod3(double a, double b, double c)
+{
+    if (a > 0.0 && b > 0.0 && c > 0.0)
+        return fmin(a, fmin(b, c));
+    if (a < 0.0 && b < 0.0 && c < 0.0)
+        return fmax(a, fmax(b, c));
+    return 0.0;
+}
+
+/* TVB-modified minmod: the first argument unchanged when small (M dx^2) */
+static inline double mmt(const gf_sh1d *s, double a, double b, double c)
+{
+    if (s->cfg.tvb_m > 0.0 && fabs(a) <= s->cfg.tvb_m * s->dx * s->dx)
+        return a;
+    return minmod3(a, b, c);
+}
+
+/* Limiting procedure of rkdg eq. 13, one variable. */
+static void limit_var(const gf_sh1d *s, const dg *d, double *u)
+{
+    const size_t n = s->n;
+    const int M = d->m;
+    const double gam = s->cfg.gamma;
+    if (M < 2 || !s->cfg.limiter)
+        return;
+    /* means are not changed by limiting: use them directly */
+    for (size_t c = 1; c <= n; ++c) {
+        double *uc = &u[c * (size_t)M];
+        const double dm = gam * (uc[0] - u[(c - 1) * (size_t)M]);
+        const double dp = gam * (u[(c + 1) * (size_t)M] - uc[0]);
+        const double vr = right_value(uc, M) - uc[0];
+        const double vl = uc[0] - left_value(uc, M);
+        const double mr = mmt(s, vr, dm, dp), ml = mmt(s, vl, dm, dp);
+        if (mr == vr && ml == vl)
+            continue;
+        uc[1] = mmt(s, uc[1], dm, dp);
+        if (M > 2)
+            uc[2] = 0.0;
+    }
+}
+
+/* Positivity scaling, dry and semi-wet treatment (section 3.4). */
+static gf_status fix_cells(gf_sh1d *s, dg *d, double *h, double *q)
+{
+    const size_t n = s->n;
+    const int M = d->m;
+    const double he = s->cfg.h_eps, hs = s->cfg.h_semi;
+    for (size_t c = 1; c <= n; ++c) {
+        double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
+        const double hb = hc[0];
+        if (hb < 0.0) {
+            if (hb < -1e-13)
+                return gf_fail(GF_EPHYS, "rkdg: negative mean depth %g in cell %zu at t = %g; "
+                                         "lower the Courant number", hb, c - 1, s->t);
+            hc[0] = 0.0; /* round-off */
+        }
+        if (M > 1) {
+            double hmin = fmin(right_value(hc, M), left_value(hc, M));
+            for (int g = 0; g < d->ng; ++g)
+                hmin = fmin(hmin, poly(hc, M, d->xg[g]));
+            if (hmin < 0.0) {
+                const double th = hb > 0.0 ? hb / (hb - hmin) : 0.0;
+                for (int m = 1; m < M; ++m) {
+                    hc[m] *= th;
+                    qc[m] *= th;
+                }
+            }
+        }
+    }
+    fill_ghosts(s, d, h, q);
+    for (size_t c = 0; c < d->nc; ++c)
+        d->ubar[c] = h[c * (size_t)M] >= hs ? q[c * (size_t)M] / h[c * (size_t)M] : 0.0;
+    for (size_t c = 1; c <= n; ++c) {
+        double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
+        const double hb = hc[0];
+        if (hb >= hs)
+            continue;
+        double ub = 0.0;
+        if (hb >= he) { /* semi-wet: velocity from the wetter neighbour */
+            const double hl = h[(c - 1) * (size_t)M], hr = h[(c + 1) * (size_t)M];
+            if (hl < hs && hr < hs)
+                ub = 0.0;
+            else if (hl >= hr)
+                ub = d->ubar[c - 1];
+            else
+                ub = d->ubar[c + 1];
+        } else {
+            for (int m = 1; m < M; ++m)
+                hc[m] = 0.0;
+        }
+        qc[0] = hb * ub;
+        for (int m = 1; m < M; ++m)
+            qc[m] = 0.0;
+    }
+    return GF_SUCCESS;
+}
+
+static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
+{
+    dg *d = s->impl;
+    const int M = d->m;
+    static const double x5[5] = {-0.906179845938664, -0.538469310105683, 0.0, 0.538469310105683,
+                                 0.906179845938664};
+    static const double w5[5] = {0.236926885056189, 0.478628670499366, 0.568888888888889,
+                                 0.478628670499366, 0.236926885056189};
+    for (size_t c = 1; c <= s->n; ++c) {
+        const double xc = gf_sh1d_cell_centre(s, c - 1);
+        for (int m = 0; m < M; ++m) {
+            double sh = 0.0, sq = 0.0;
+            for (int g = 0; g < 5; ++g) {
+                double hv, uv;
+                const double x = xc + 0.5 * s->dx * x5[g];
+                fn(x, ctx, &hv, &uv);
+                if (!isfinite(hv) || !isfinite(uv) || hv < 0.0)
+                    return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite "
+                                            "values and h >= 0)", x, hv, uv);
+                sh += w5[g] * hv * legendre(m, x5[g]);
+                sq += w5[g] * hv * uv * legendre(m, x5[g]);
+            }
+            d->h[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sh; /* eq. 8 */
+            d->q[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sq;
+        }
+    }
+    fill_ghosts(s, d, d->h, d->q);
+    limit_var(s, d, d->h);
+    limit_var(s, d, d->q);
+    gf_status st = fix_cells(s, d, d->h, d->q);
+    for (size_t c = 1; c <= s->n; ++c)
+        d->moving[c] = d->q[c * (size_t)M] != 0.0;
+    fill_ghosts(s, d, d->h, d->q);
+    return st;
+}
+
+static double dg_max_dt(const gf_sh1d *s)
+{
+    const dg *d = s->impl;
+    const int M = d->m;
+    double amax = 0.0;
+    for (size_t c = 1; c <= s->n; ++c) {
+        const double hb = d->h[c * (size_t)M];
+        if (hb <= s->cfg.h_eps)
+            continue;
+        const double u = d->q[c * (size_t)M] / hb;
+        const double beta = s->cfg.epsilon * d->k[c] * cos(d->zg[c * (size_t)d->ng]);
+        amax = fmax(amax, fabs(u) + sqrt(beta * hb));
+    }
+    return amax > 0.0 ? s->cfl * s->dx / amax : HUGE_VAL;
+}
+
+/* out = a*base + b*(in + dt L(in)), with friction that never reverses the
+ * mean momentum, then limiter, positivity and dry treatment. */
+static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, double a,
+                             const double *hb, const double *qb, double b, double dt, double *hout,
+                             double *qout)
+{
+    const size_t n = s->n;
+    const int M = d->m;
+    rhs(s, d, hin, qin);
+    for (size_t c = 1; c <= n; ++c) {
+        const size_t o = c * (size_t)M;
+        double he[MAXM] = {0}, qe[MAXM] = {0};
+        for (int m = 0; m < M; ++m) {
+            he[m] = hin[o + m] + dt * d->rh[o + m];
+            qe[m] = qin[o + m] + dt * d->rq[o + m];
+        }
+        const double capacity = dt * d->cap[c];
+        if (fabs(qe[0]) <= capacity || he[0] <= s->cfg.h_eps) { /* friction holds: at rest */
+            for (int m = 0; m < M; ++m)
+                qe[m] = 0.0;
+            d->stopped[c] = 1;
+        } else {
+            qe[0] = gf_friction_decelerate(qe[0], capacity);
+            for (int m = 1; m < M; ++m)
+                qe[m] += dt * d->fm[o + m];
+            d->stopped[c] = 0;
+        }
+        for (int m = 0; m < M; ++m) {
+            hout[o + m] = (hb ? a * hb[o + m] : 0.0) + b * he[m];
+            qout[o + m] = (qb ? a * qb[o + m] : 0.0) + b * qe[m];
+        }
+    }
+    fill_ghosts(s, d, hout, qout);
+    limit_var(s, d, hout);
+    limit_var(s, d, qout);
+    gf_status st = fix_cells(s, d, hout, qout);
+    for (size_t c = 1; c <= n; ++c)
+        d->moving[c] = !d->stopped[c] && qout[c * (size_t)M] != 0.0;
+    return st;
+}
+
+static gf_status dg_step(gf_sh1d *s, double dt)
+{
+    dg *d = s->impl;
+    const size_t nm = d->nc * (size_t)d->m;
+    gf_status st;
+    memcpy(d->h0, d->h, nm * sizeof *d->h);
+    memcpy(d->q0, d->q, nm * sizeof *d->q);
+    /* SSP-RK3 (section 3.2) */
+    if ((st = euler_stage(s, d, d->h0, d->q0, 0.0, NULL, NULL, 1.0, dt, d->h1, d->q1)))
+        return st;
+    if ((st = euler_stage(s, d, d->h1, d->q1, 0.75, d->h0, d->q0, 0.25, dt, d->h1, d->q1)))
+        return st;
+    if ((st = euler_stage(s, d, d->h1, d->q1, 1.0 / 3.0, d->h0, d->q0, 2.0 / 3.0, dt, d->h, d->q)))
+        return st;
+    /* cells stopped by friction in the last stage are at rest */
+    for (size_t c = 1; c <= s->n; ++c)
+        if (d->stopped[c])
+            for (int m = 0; m < d->m; ++m)
+                d->q[c * (size_t)d->m + m] = 0.0;
+    fill_ghosts(s, d, d->h, d->q);
+    return GF_SUCCESS;
+}
+
+static void dg_means(const gf_sh1d *s, double *h, double *q)
+{
+    const dg *d = s->impl;
+    for (size_t i = 0; i < s->n; ++i) {
+        h[i] = d->h[(i + 1) * (size_t)d->m];
+        q[i] = d->q[(i + 1) * (size_t)d->m];
+    }
+}
+
+static void dg_eval(const gf_sh1d *s, size_t cell, double xi, double *h, double *q)
+{
+    const dg *d = s->impl;
+    *h = poly(&d->h[(cell + 1) * (size_t)d->m], d->m, xi);
+    *q = poly(&d->q[(cell + 1) * (size_t)d->m], d->m, xi);
+}
+
+static double dg_min_depth(const gf_sh1d *s)
+{
+    const dg *d = s->impl;
+    const int M = d->m;
+    double mn = HUGE_VAL;
+    for (size_t c = 1; c <= s->n; ++c) {
+        const double *hc = &d->h[c * (size_t)M];
+        mn = fmin(mn, fmin(right_value(hc, M), left_value(hc, M)));
+        for (int g = 0; g < d->ng; ++g)
+            mn = fmin(mn, poly(hc, M, d->xg[g]));
+    }
+    return mn;
+}
+
+static const gf_sh1d_type dg_type = {
+    "rkdg", dg_init, dg_free, dg_set_initial, dg_max_dt, dg_step, dg_means, dg_eval, dg_min_depth,
+};
+const gf_sh1d_type *const gf_sh1d_rkdg = &dg_type;

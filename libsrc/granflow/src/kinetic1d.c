@@ -1,0 +1,290 @@
+#include "granflow/kinetic1d.h"
+#include "granflow/source.h"
+#include "internal.h"
+#include "sh1d_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct kinetic {
+    double *h, *q;          /* n + 2 with one ghost cell each side */
+    double *beta;           /* per cell, n + 2 */
+    double *f1, *f2;        /* interface fluxes, n + 1 (interface i between cells i, i+1) */
+    unsigned char *slow;    /* per cell */
+    unsigned char *mod;     /* per interface: modified flux */
+    double *hn, *qn;        /* new depth and discharge */
+} kinetic;
+
+void gf_kinetic_half_fluxes(double h, double u, double beta, double p[2], double n[2])
+{
+    if (!(h > 0.0)) {
+        p[0] = p[1] = n[0] = n[1] = 0.0;
+        return;
+    }
+    const double c = sqrt(2.0 * beta * h);
+    double a = -u / c;
+    if (a <= -1.0) { /* all particles move right */
+        p[0] = h * u;
+        p[1] = h * u * u + 0.5 * beta * h * h;
+        n[0] = n[1] = 0.0;
+        return;
+    }
+    if (a >= 1.0) {
+        n[0] = h * u;
+        n[1] = h * u * u + 0.5 * beta * h * h;
+        p[0] = p[1] = 0.0;
+        return;
+    }
+    const double th = asin(a);
+    const double j0 = 0.25 * GF_PI - 0.5 * th - 0.25 * sin(2.0 * th);
+    const double j1 = pow(1.0 - a * a, 1.5) / 3.0;
+    const double j2 = GF_PI / 16.0 - th / 8.0 + sin(4.0 * th) / 32.0;
+    const double k0 = 0.5 * GF_PI - j0, k2 = 0.125 * GF_PI - j2;
+    const double f = 2.0 * h / GF_PI;
+    p[0] = f * (u * j0 + c * j1);
+    p[1] = f * (u * u * j0 + 2.0 * u * c * j1 + c * c * j2);
+    n[0] = f * (u * k0 - c * j1);
+    n[1] = f * (u * u * k0 - 2.0 * u * c * j1 + c * c * k2);
+}
+
+static void kinetic_free(gf_sh1d *s)
+{
+    kinetic *k = s->impl;
+    if (!k)
+        return;
+    free(k->h);
+    free(k);
+    s->impl = NULL;
+}
+
+static gf_status kinetic_init(gf_sh1d *s)
+{
+    if (s->cfg.topo)
+        return gf_fail(GF_EINVAL, "the kinetic schemes are formulated for a constant inclination "
+                                  "(kinetic paper, section 3); use rkdg for a curved chute");
+    kinetic *k = calloc(1, sizeof *k);
+    if (!k)
+        return gf_fail(GF_ENOMEM, "kinetic: out of memory");
+    const size_t n = s->n;
+    /* one block: h, q, beta, hn, qn (n+2 each), f1, f2 (n+1 each); flags separately */
+    double *blk = calloc(5 * (n + 2) + 2 * (n + 1), sizeof *blk);
+    unsigned char *flags = calloc(2 * (n + 2), 1);
+    if (!blk || !flags) {
+        free(blk);
+        free(flags);
+        free(k);
+        return gf_fail(GF_ENOMEM, "kinetic: out of memory");
+    }
+    k->h = blk;
+    k->q = blk + (n + 2);
+    k->beta = blk + 2 * (n + 2);
+    k->hn = blk + 3 * (n + 2);
+    k->qn = blk + 4 * (n + 2);
+    k->f1 = blk + 5 * (n + 2);
+    k->f2 = k->f1 + (n + 1);
+    k->slow = flags;
+    k->mod = flags + (n + 2);
+    s->impl = k;
+    s->cfl = s->cfg.cfl > 0.0 ? s->cfg.cfl : 0.9;
+    return GF_SUCCESS;
+}
+
+/* Free the flag block too: it was allocated separately. */
+static void kinetic_free_all(gf_sh1d *s)
+{
+    kinetic *k = s->impl;
+    if (k)
+        free(k->slow);
+    kinetic_free(s);
+}
+
+static void fill_ghosts(const gf_sh1d *s, double *h, double *q)
+{
+    const size_t n = s->n;
+    switch (s->cfg.bc_left) {
+    case GF_BC_PERIODIC: h[0] = h[n]; q[0] = q[n]; break;
+    case GF_BC_WALL: h[0] = h[1]; q[0] = -q[1]; break;
+    default: h[0] = h[1]; q[0] = q[1]; break;
+    }
+    switch (s->cfg.bc_right) {
+    case GF_BC_PERIODIC: h[n + 1] = h[1]; q[n + 1] = q[1]; break;
+    case GF_BC_WALL: h[n + 1] = h[n]; q[n + 1] = -q[n]; break;
+    default: h[n + 1] = h[n]; q[n + 1] = q[n]; break;
+    }
+}
+
+/* Gauss quadrature of the initial data to cell means. */
+static gf_status kinetic_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
+{
+    kinetic *k = s->impl;
+    static const double xg[3] = {-0.774596669241483377, 0.0, 0.774596669241483377};
+    static const double wg[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    for (size_t i = 0; i < s->n; ++i) {
+        const double xc = gf_sh1d_cell_centre(s, i);
+        double hm = 0.0, qm = 0.0;
+        for (int g = 0; g < 3; ++g) {
+            double h, u;
+            fn(xc + 0.5 * s->dx * xg[g], ctx, &h, &u);
+            if (!isfinite(h) || !isfinite(u) || h < 0.0)
+                return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite "
+                                        "values and h >= 0)", xc + 0.5 * s->dx * xg[g], h, u);
+            hm += wg[g] * h;
+            qm += wg[g] * h * u;
+        }
+        k->h[i + 1] = hm;
+        k->q[i + 1] = hm > s->cfg.h_eps ? qm : 0.0;
+    }
+    fill_ghosts(s, k->h, k->q);
+    return GF_SUCCESS;
+}
+
+static void update_beta(const gf_sh1d *s, kinetic *k)
+{
+    const size_t n = s->n;
+    for (size_t i = 1; i <= n; ++i) {
+        const double ul = gf_sh1d_velocity(s, k->h[i - 1], k->q[i - 1]);
+        const double ur = gf_sh1d_velocity(s, k->h[i + 1], k->q[i + 1]);
+        k->beta[i] = gf_sh1d_beta(s, s->cfg.zeta, ur - ul);
+    }
+    k->beta[0] = k->beta[1];
+    k->beta[n + 1] = k->beta[n];
+}
+
+static double kinetic_max_dt(const gf_sh1d *s)
+{
+    kinetic *k = s->impl;
+    update_beta(s, k);
+    double smax = 0.0;
+    for (size_t i = 1; i <= s->n; ++i) {
+        const double u = gf_sh1d_velocity(s, k->h[i], k->q[i]);
+        smax = fmax(smax, fabs(u) + sqrt(2.0 * k->beta[i] * k->h[i])); /* Theorem 3 */
+    }
+    return smax > 0.0 ? s->cfl * s->dx / smax : HUGE_VAL;
+}
+
+/* g(u) = g sin zeta - sgn(u) tau/(rho h): net acceleration of a moving cell. */
+static double accel(const gf_sh1d *s, double h, double u)
+{
+    const double gs = s->cfg.g * sin(s->cfg.zeta);
+    if (u == 0.0 || h <= s->cfg.h_eps)
+        return gs;
+    const double fr = gf_sh1d_friction(s, h, u, s->cfg.zeta, 0.0) / h;
+    return gs - (u > 0.0 ? fr : -fr);
+}
+
+/* g~ of the kinetic paper: beta dh/dx clamped to the static bounds. */
+static double g_tilde(const gf_sh1d *s, const kinetic *k, size_t i)
+{
+    const double bdh = k->beta[i] * (k->h[i + 1] - k->h[i - 1]) / (2.0 * s->dx);
+    const double gs = s->cfg.g * sin(s->cfg.zeta);
+    const double r = k->h[i] > s->cfg.h_eps ? gf_sh1d_static_friction(s, k->h[i], s->cfg.zeta) / k->h[i]
+                                             : 0.0;
+    return fmin(gs + r, fmax(bdh, gs - r));
+}
+
+static void interface_flux(const gf_sh1d *s, kinetic *k, size_t f)
+{
+    /* interface f between cells f and f+1 (ghost-indexed) */
+    const double hl = k->h[f], hr = k->h[f + 1];
+    const double ul = gf_sh1d_velocity(s, hl, k->q[f]), ur = gf_sh1d_velocity(s, hr, k->q[f + 1]);
+    double pl[2], nl[2], pr[2], nr[2];
+    if (k->mod[f]) { /* eq. 25: mean depth, upwind velocity */
+        const double hm = 0.5 * (hl + hr);
+        gf_kinetic_half_fluxes(hm, ul, k->beta[f], pl, nl);
+        gf_kinetic_half_fluxes(hm, ur, k->beta[f + 1], pr, nr);
+    } else {
+        gf_kinetic_half_fluxes(hl, ul, k->beta[f], pl, nl);
+        gf_kinetic_half_fluxes(hr, ur, k->beta[f + 1], pr, nr);
+    }
+    k->f1[f] = pl[0] + nr[0];
+    k->f2[f] = pl[1] + nr[1];
+}
+
+static gf_status kinetic_step(gf_sh1d *s, double dt)
+{
+    kinetic *k = s->impl;
+    const size_t n = s->n;
+    const double lam = dt / s->dx;
+    const int scheme = s->cfg.scheme;
+    fill_ghosts(s, k->h, k->q);
+    update_beta(s, k);
+
+    for (size_t i = 0; i <= n + 1; ++i) {
+        const double u = gf_sh1d_velocity(s, k->h[i], k->q[i]);
+        k->slow[i] = k->q[i] == 0.0 || fabs(k->q[i]) < fabs(dt * accel(s, k->h[i], u) * k->h[i]);
+    }
+    for (size_t f = 0; f <= n; ++f) {
+        k->mod[f] = scheme == 2 || (scheme == 3 && (k->slow[f] || k->slow[f + 1]));
+        interface_flux(s, k, f);
+    }
+    /* positivity fallback to the Scheme 1 flux (Theorem 3) */
+    for (int pass = 0; pass < 8; ++pass) {
+        int changed = 0;
+        for (size_t i = 1; i <= n; ++i) {
+            k->hn[i] = k->h[i] - lam * (k->f1[i] - k->f1[i - 1]);
+            if (k->hn[i] < 0.0 && (k->mod[i] || k->mod[i - 1])) {
+                k->mod[i] = k->mod[i - 1] = 0;
+                interface_flux(s, k, i);
+                interface_flux(s, k, i - 1);
+                changed = 1;
+            }
+        }
+        if (!changed)
+            break;
+    }
+    for (size_t i = 1; i <= n; ++i) {
+        const double hn = k->hn[i];
+        if (hn < 0.0)
+            return gf_fail(GF_EPHYS, "kinetic scheme %d: negative depth %g in cell %zu at t = %g; "
+                                     "lower the Courant number", scheme, hn, i - 1, s->t);
+        const double q = k->q[i], h = k->h[i];
+        const double u = gf_sh1d_velocity(s, h, q);
+        const double dF = k->f2[i] - k->f2[i - 1];
+        double qn;
+        if (scheme != 1 && k->slow[i]) {
+            const double a = accel(s, h, u);
+            const double mu = (q == 0.0 || hn <= s->cfg.h_eps) ? 0.0 : -q / (dt * a * hn);
+            const double hbar = 0.25 * (k->h[i + 1] + 2.0 * h + k->h[i - 1]);
+            qn = -lam * dF + (1.0 - mu) * dt * g_tilde(s, k, i) * hbar;
+        } else {
+            const double a = u != 0.0 ? accel(s, h, u) : g_tilde(s, k, i);
+            qn = q - lam * dF + dt * a * hn;
+        }
+        k->qn[i] = hn > s->cfg.h_eps ? qn : 0.0;
+    }
+    memcpy(k->h + 1, k->hn + 1, n * sizeof *k->h);
+    memcpy(k->q + 1, k->qn + 1, n * sizeof *k->q);
+    fill_ghosts(s, k->h, k->q);
+    return GF_SUCCESS;
+}
+
+static void kinetic_means(const gf_sh1d *s, double *h, double *q)
+{
+    const kinetic *k = s->impl;
+    memcpy(h, k->h + 1, s->n * sizeof *h);
+    memcpy(q, k->q + 1, s->n * sizeof *q);
+}
+
+static void kinetic_eval(const gf_sh1d *s, size_t cell, double xi, double *h, double *q)
+{
+    (void)xi;
+    const kinetic *k = s->impl;
+    *h = k->h[cell + 1];
+    *q = k->q[cell + 1];
+}
+
+static double kinetic_min_depth(const gf_sh1d *s)
+{
+    const kinetic *k = s->impl;
+    double m = HUGE_VAL;
+    for (size_t i = 1; i <= s->n; ++i)
+        m = fmin(m, k->h[i]);
+    return m;
+}
+
+static const gf_sh1d_type kinetic_type = {
+    "kinetic",     kinetic_init,  kinetic_free_all, kinetic_set_initial, kinetic_max_dt,
+    kinetic_step,  kinetic_means, kinetic_eval,     kinetic_min_depth,
+};
+const gf_sh1d_type *const gf_sh1d_kinetic = &kinetic_type;

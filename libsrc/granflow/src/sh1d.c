@@ -1,0 +1,289 @@
+#include "granflow/sh1d.h"
+#include "granflow/source.h"
+#include "internal.h"
+#include "sh1d_internal.h"
+
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void gf_sh1d_config_init(gf_sh1d_config *c)
+{
+    memset(c, 0, sizeof *c);
+    c->n_cells = 256;
+    c->x_min = 0.0;
+    c->x_max = 30.0;
+    c->epsilon = 1.0;
+    c->g = 1.0;
+    c->chi = 1.0;
+    c->zeta = 0.0;
+    c->topo = NULL;
+    gf_earth_pressure_init(&c->earth_pressure, GF_EARTH_PRESSURE_ISOTROPIC, 0.0, 0.0);
+    gf_friction_init(&c->friction, "none");
+    c->bc_left = c->bc_right = GF_BC_TRANSMISSIVE;
+    c->cfl = 0.0;
+    c->dt_fixed = 0.0;
+    c->h_eps = 1e-10;
+    c->h_semi = 1e-6;
+    c->degree = 2;
+    c->limiter = 1;
+    c->gamma = 0.5;
+    c->tvb_m = 0.0;
+    c->scheme = 3;
+}
+
+const gf_sh1d_type *gf_sh1d_type_lookup(const char *name)
+{
+    if (!name)
+        return NULL;
+    if (strcmp(name, "rkdg") == 0)
+        return gf_sh1d_rkdg;
+    if (strcmp(name, "kinetic") == 0)
+        return gf_sh1d_kinetic;
+    return NULL;
+}
+
+const char *gf_sh1d_type_name(const gf_sh1d_type *type) { return type ? type->name : "(null)"; }
+
+static gf_status check_config(const gf_sh1d_config *c)
+{
+    gf_status st;
+    if (c->n_cells < 4 || c->n_cells > 100000000)
+        return gf_fail(GF_EDOM, "number of cells n_cells = %zu is outside [4, 1e8]", c->n_cells);
+    if ((st = gf_check_range("x_min", c->x_min, -1e300, 1e300)) ||
+        (st = gf_check_range("x_max", c->x_max, -1e300, 1e300)))
+        return st;
+    if (!(c->x_max > c->x_min))
+        return gf_fail(GF_EDOM, "x_max = %g must exceed x_min = %g", c->x_max, c->x_min);
+    if ((st = gf_check_range("epsilon (beta = epsilon K cos zeta)", c->epsilon, 1e-300, 1e300)) ||
+        (st = gf_check_range("gravity scale g", c->g, 0.0, 1e300)) ||
+        (st = gf_check_range("curvature factor chi", c->chi, -1e300, 1e300)) ||
+        (st = gf_check_range("inclination zeta [rad]", c->zeta, -0.5 * GF_PI + 1e-12,
+                             0.5 * GF_PI - 1e-12)) ||
+        (st = gf_check_range("cfl", c->cfl, 0.0, 1.0)) ||
+        (st = gf_check_range("dt (fixed time step)", c->dt_fixed, 0.0, 1e300)) ||
+        (st = gf_check_range("h_eps (dry threshold)", c->h_eps, 1e-300, 1.0)) ||
+        (st = gf_check_range("h_semi (semi-wet threshold)", c->h_semi, c->h_eps, 1.0)) ||
+        (st = gf_check_range("gamma (minmod)", c->gamma, 1e-12, 1.0)) ||
+        (st = gf_check_range("tvb_m (TVB constant)", c->tvb_m, 0.0, 1e300)))
+        return st;
+    if (c->degree < 0 || c->degree > 2)
+        return gf_fail(GF_EDOM, "degree = %d is outside {0, 1, 2}", c->degree);
+    if (c->scheme < 1 || c->scheme > 3)
+        return gf_fail(GF_EDOM, "kinetic scheme = %d is outside {1, 2, 3}", c->scheme);
+    if ((c->bc_left == GF_BC_PERIODIC) != (c->bc_right == GF_BC_PERIODIC))
+        return gf_fail(GF_EINVAL, "periodic boundaries must be periodic on both sides");
+    if ((st = gf_friction_check(&c->friction)))
+        return st;
+    if (c->topo) {
+        double lo, hi;
+        gf_topography_range(c->topo, &lo, &hi);
+        if (c->x_min < lo || c->x_max > hi)
+            return gf_fail(GF_EDOM, "domain [%g, %g] is not inside the topography's range [%g, %g]",
+                           c->x_min, c->x_max, lo, hi);
+    }
+    return GF_SUCCESS;
+}
+
+gf_status gf_sh1d_alloc(const gf_sh1d_type *type, const gf_sh1d_config *cfg, gf_sh1d **out)
+{
+    if (!type || !cfg || !out)
+        return gf_fail(GF_EINVAL, "gf_sh1d_alloc: null argument");
+    *out = NULL;
+    gf_status st = check_config(cfg);
+    if (st)
+        return st;
+    gf_sh1d *s = calloc(1, sizeof *s);
+    if (!s)
+        return gf_fail(GF_ENOMEM, "gf_sh1d_alloc: out of memory");
+    s->type = type;
+    s->cfg = *cfg;
+    s->n = cfg->n_cells;
+    s->dx = (cfg->x_max - cfg->x_min) / (double)cfg->n_cells;
+    s->static_friction = cfg->friction;
+    double u0;
+    if (gf_friction_get(&cfg->friction, "u0", &u0) == GF_SUCCESS)
+        gf_friction_set(&s->static_friction, "u0", 0.0);
+    if ((st = type->init(s))) {
+        free(s);
+        return st;
+    }
+    *out = s;
+    return GF_SUCCESS;
+}
+
+void gf_sh1d_free(gf_sh1d *s)
+{
+    if (!s)
+        return;
+    s->type->free(s);
+    free(s);
+}
+
+gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
+{
+    if (!s || !fn)
+        return gf_fail(GF_EINVAL, "gf_sh1d_set_initial: null argument");
+    s->t = 0.0;
+    s->steps = 0;
+    return s->type->set_initial(s, fn, ctx);
+}
+
+static gf_status check_state(const gf_sh1d *s)
+{
+    double *h = malloc(2 * s->n * sizeof *h);
+    if (!h)
+        return gf_fail(GF_ENOMEM, "out of memory");
+    double *q = h + s->n;
+    s->type->means(s, h, q);
+    gf_status st = GF_SUCCESS;
+    for (size_t i = 0; i < s->n; ++i)
+        if (!isfinite(h[i]) || !isfinite(q[i])) {
+            st = gf_fail(GF_ENONFINITE, "%s: solution not finite in cell %zu (x = %g) at t = %g "
+                                        "after %zu steps",
+                         s->type->name, i, gf_sh1d_cell_centre(s, i), s->t, s->steps);
+            break;
+        }
+    free(h);
+    return st;
+}
+
+gf_status gf_sh1d_step(gf_sh1d *s, double dt_max)
+{
+    if (!s)
+        return gf_fail(GF_EINVAL, "gf_sh1d_step: null solver");
+    const double dt_cfl = s->type->max_dt(s);
+    double dt = dt_cfl;
+    if (s->cfg.dt_fixed > 0.0) {
+        if (s->cfg.dt_fixed > dt_cfl * (1.0 + 1e-12))
+            return gf_fail(GF_EDOM, "%s: fixed dt = %g exceeds the CFL bound %g at t = %g "
+                                    "(Courant number %g); lower dt",
+                           s->type->name, s->cfg.dt_fixed, dt_cfl, s->t, s->cfl);
+        dt = s->cfg.dt_fixed;
+    }
+    if (dt_max < dt)
+        dt = dt_max;
+    if (!(dt > 0.0) || !isfinite(dt))
+        return gf_fail(GF_ENONFINITE, "%s: invalid time step %g at t = %g", s->type->name, dt, s->t);
+    gf_status st = s->type->step(s, dt);
+    if (st)
+        return st;
+    s->t += dt;
+    s->steps++;
+    return check_state(s);
+}
+
+gf_status gf_sh1d_advance_to(gf_sh1d *s, double t)
+{
+    if (!s)
+        return gf_fail(GF_EINVAL, "gf_sh1d_advance_to: null solver");
+    while (s->t < t * (1.0 - 1e-14) && t - s->t > 1e-14) {
+        gf_status st = gf_sh1d_step(s, t - s->t);
+        if (st)
+            return st;
+    }
+    return GF_SUCCESS;
+}
+
+double gf_sh1d_time(const gf_sh1d *s) { return s->t; }
+size_t gf_sh1d_steps(const gf_sh1d *s) { return s->steps; }
+size_t gf_sh1d_n_cells(const gf_sh1d *s) { return s->n; }
+double gf_sh1d_dx(const gf_sh1d *s) { return s->dx; }
+double gf_sh1d_cell_centre(const gf_sh1d *s, size_t i)
+{
+    return s->cfg.x_min + ((double)i + 0.5) * s->dx;
+}
+const gf_sh1d_config *gf_sh1d_get_config(const gf_sh1d *s) { return &s->cfg; }
+
+void gf_sh1d_means(const gf_sh1d *s, double *h, double *u)
+{
+    s->type->means(s, h, u);
+    for (size_t i = 0; i < s->n; ++i)
+        u[i] = gf_sh1d_velocity(s, h[i], u[i]);
+}
+
+gf_status gf_sh1d_eval(const gf_sh1d *s, double x, double *h, double *u)
+{
+    if (!s || !h || !u)
+        return gf_fail(GF_EINVAL, "gf_sh1d_eval: null argument");
+    if (!(x >= s->cfg.x_min && x <= s->cfg.x_max))
+        return gf_fail(GF_EDOM, "gf_sh1d_eval: x = %g outside the domain [%g, %g]", x,
+                       s->cfg.x_min, s->cfg.x_max);
+    size_t i = (size_t)((x - s->cfg.x_min) / s->dx);
+    if (i >= s->n)
+        i = s->n - 1;
+    const double xi = 2.0 * (x - gf_sh1d_cell_centre(s, i)) / s->dx;
+    double q;
+    s->type->eval(s, i, xi, h, &q);
+    *u = gf_sh1d_velocity(s, *h, q);
+    return GF_SUCCESS;
+}
+
+double gf_sh1d_mass(const gf_sh1d *s)
+{
+    double *h = malloc(2 * s->n * sizeof *h), m = 0.0;
+    if (!h)
+        return NAN;
+    s->type->means(s, h, h + s->n);
+    for (size_t i = 0; i < s->n; ++i)
+        m += h[i];
+    free(h);
+    return m * s->dx;
+}
+
+double gf_sh1d_min_depth(const gf_sh1d *s) { return s->type->min_depth(s); }
+
+double gf_sh1d_max_speed(const gf_sh1d *s)
+{
+    double *h = malloc(2 * s->n * sizeof *h), m = 0.0;
+    if (!h)
+        return NAN;
+    gf_sh1d_means(s, h, h + s->n);
+    for (size_t i = 0; i < s->n; ++i)
+        m = fmax(m, fabs(h[s->n + i]));
+    free(h);
+    return m;
+}
+
+void gf_sh1d_bed(const gf_sh1d *s, double x, double *zeta, double *kappa)
+{
+    if (s->cfg.topo) {
+        /* range checked at alloc; ghost points slightly outside are clamped */
+        double lo, hi;
+        gf_topography_range(s->cfg.topo, &lo, &hi);
+        gf_topography_eval(s->cfg.topo, fmin(fmax(x, lo), hi), zeta, kappa);
+    } else {
+        *zeta = s->cfg.zeta;
+        *kappa = 0.0;
+    }
+}
+
+double gf_sh1d_beta(const gf_sh1d *s, double zeta, double dudx)
+{
+    return s->cfg.epsilon * gf_earth_pressure_k(&s->cfg.earth_pressure, dudx) * cos(zeta);
+}
+
+double gf_sh1d_friction(const gf_sh1d *s, double h, double u, double zeta, double kappa)
+{
+    if (h <= s->cfg.h_eps)
+        return 0.0;
+    const double n = gf_sh_normal_acceleration(s->cfg.g, zeta, s->cfg.chi * kappa, u);
+    const gf_friction_state st = {h, fabs(u), h * n, 1.0, s->cfg.g};
+    gf_friction_result r;
+    if (gf_friction_eval(&s->cfg.friction, &st, &r) != GF_SUCCESS)
+        return NAN; /* caught by the finiteness check of the step */
+    return r.tau;
+}
+
+double gf_sh1d_static_friction(const gf_sh1d *s, double h, double zeta)
+{
+    if (h <= s->cfg.h_eps)
+        return 0.0;
+    const double n = gf_sh_normal_acceleration(s->cfg.g, zeta, 0.0, 0.0);
+    const gf_friction_state st = {h, 0.0, h * n, 1.0, s->cfg.g};
+    gf_friction_result r;
+    if (gf_friction_eval(&s->static_friction, &st, &r) != GF_SUCCESS)
+        return NAN;
+    return r.tau;
+}

@@ -1,0 +1,48 @@
+/* Internal interface between the 1D driver (sh1d.c) and the schemes. */
+#ifndef GRANFLOW_SH1D_INTERNAL_H
+#define GRANFLOW_SH1D_INTERNAL_H
+
+#include "granflow/sh1d.h"
+
+struct gf_sh1d_type {
+    const char *name;
+    gf_status (*init)(gf_sh1d *s);                   /* allocate s->impl, check options */
+    void (*free)(gf_sh1d *s);
+    gf_status (*set_initial)(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx);
+    double (*max_dt)(const gf_sh1d *s);              /* CFL step at Courant number cfl */
+    gf_status (*step)(gf_sh1d *s, double dt);
+    void (*means)(const gf_sh1d *s, double *h, double *q);
+    void (*eval)(const gf_sh1d *s, size_t cell, double xi, double *h, double *q);
+    double (*min_depth)(const gf_sh1d *s);
+};
+
+struct gf_sh1d {
+    const gf_sh1d_type *type;
+    gf_sh1d_config cfg;
+    gf_friction static_friction; /* the law with u0 = 0: the bound at rest */
+    size_t n;
+    double dx, t, cfl;
+    size_t steps;
+    void *impl;
+};
+
+/* Inclination and curvature at x (constant zeta when no topography). */
+void gf_sh1d_bed(const gf_sh1d *s, double x, double *zeta, double *kappa);
+
+/* Earth-pressure coefficient times epsilon cos(zeta): beta. */
+double gf_sh1d_beta(const gf_sh1d *s, double zeta, double dudx);
+
+/* Basal friction per unit density |tau_b|/rho >= 0 at depth h, velocity u. */
+double gf_sh1d_friction(const gf_sh1d *s, double h, double u, double zeta, double kappa);
+
+/* Static friction bound at rest, per unit density: the law with u0 = 0 at
+ * speed 0 (mu h g cos(zeta) for Coulomb). */
+double gf_sh1d_static_friction(const gf_sh1d *s, double h, double zeta);
+
+/* Velocity q/h, 0 where h <= h_eps. */
+static inline double gf_sh1d_velocity(const gf_sh1d *s, double h, double q)
+{
+    return h > s->cfg.h_eps ? q / h : 0.0;
+}
+
+#endif
