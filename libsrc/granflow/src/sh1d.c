@@ -162,7 +162,8 @@ gf_status gf_sh1d_step(gf_sh1d *s, double dt_max)
                            s->type->name, s->cfg.dt_fixed, dt_cfl, s->t, s->cfl);
         dt = s->cfg.dt_fixed;
     }
-    if (dt_max < dt)
+    /* land on the target instead of leaving a round-off sliver of a step */
+    if (dt_max < dt * (1.0 + 1e-9))
         dt = dt_max;
     if (!(dt > 0.0) || !isfinite(dt))
         return gf_fail(GF_ENONFINITE, "%s: invalid time step %g at t = %g", s->type->name, dt, s->t);

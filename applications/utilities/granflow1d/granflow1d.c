@@ -1,0 +1,581 @@
+/*
+ * granflow1d — run a 1D Savage–Hutter case with libgranflow's RKDG or kinetic
+ * solvers.
+ *
+ *   granflow1d CASE.ini [section.key=value ...]
+ *
+ * The case file schema (every key optional unless stated; angles in degrees):
+ *
+ *   [model]       epsilon (1), g (1), chi (1), earth_pressure (isotropic |
+ *                 savageHutter), phi, delta (deg; savageHutter needs both),
+ *                 friction (none | coulomb | mu_i | voellmy | chezy)
+ *   [friction]    the law's coefficients (coulomb: mu, u0; mu_i: mu_s, mu_2,
+ *                 I_0, d, rho_p, u0; voellmy: mu, xi, u0; chezy: C); coulomb
+ *                 defaults to mu = tan(delta), u0 = 0
+ *   [topography]  type (flat | chute | tabulated); flat: zeta; chute: zeta0,
+ *                 zeta1 (0), x1 (17.5), x2 (21.5); tabulated: file (CSV x,zeta)
+ *   [domain]      x_min (0), x_max (30), cells (256), bc_left, bc_right
+ *                 (transmissive | wall | periodic)
+ *   [initial]     shape: dam (x0, h_left, h_right, u_left, u_right) |
+ *                 box (x1, x2, h_in, h_out) | semicircle (x0, radius) |
+ *                 parabola (x0, K, l: max(K/10, K - l (x-x0)^2)) |
+ *                 sinusoid (the kinetic paper's test 5) | file (CSV x,h,u)
+ *   [solver]      method (rkdg | kinetic), degree (2), scheme (3), cfl,
+ *                 dt, limiter (on | off), gamma (0.5), tvb_m (0), h_eps, h_semi
+ *   [output]      times (list), dir (.), name (case file stem), plot (no | yes),
+ *                 exact (no | riemann: exact columns for a dam), front_h (1e-3),
+ *                 every (0: summary line every this much time)
+ *
+ * Output: NAME_t<time>.csv with columns x,h,u[,X,Z,Xs,Zs][,h_exact,u_exact]
+ * (X,Z bed position, Xs,Zs free-surface point, rkdg appendix) and NAME.summary
+ * (time, mass, max depth, front, tail, max speed, steps, CPU seconds).
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <ini.h>
+
+#include "granflow/granflow.h"
+#include "granflow/sh1d.h"
+
+#define DEG (3.14159265358979323846 / 180.0)
+#define MAXE 256
+#define MAXT 64
+
+typedef struct entry {
+    char section[32], key[32], value[512];
+    int used;
+} entry;
+
+typedef struct ini_data {
+    entry e[MAXE];
+    int n;
+    const char *file;
+} ini_data;
+
+static const char *file_name = "";
+
+static void die(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "granflow1d: %s: ", file_name);
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\n");
+    va_end(ap);
+    exit(2);
+}
+
+/* formatted path; a path that does not fit is an error, never truncated */
+static void mkpath(char *buf, size_t size, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    const int r = vsnprintf(buf, size, fmt, ap);
+    va_end(ap);
+    if (r < 0 || (size_t)r >= size)
+        die("output path too long (%d characters)", r);
+}
+
+static void put(ini_data *d, const char *sec, const char *key, const char *val)
+{
+    for (int i = 0; i < d->n; ++i)
+        if (!strcmp(d->e[i].section, sec) && !strcmp(d->e[i].key, key)) {
+            snprintf(d->e[i].value, sizeof d->e[i].value, "%s", val);
+            return;
+        }
+    if (d->n == MAXE)
+        die("too many entries");
+    entry *e = &d->e[d->n++];
+    snprintf(e->section, sizeof e->section, "%s", sec);
+    snprintf(e->key, sizeof e->key, "%s", key);
+    snprintf(e->value, sizeof e->value, "%s", val);
+    e->used = 0;
+}
+
+static int handler(void *user, const char *sec, const char *key, const char *val)
+{
+    put(user, sec, key, val);
+    return 1;
+}
+
+static entry *find(ini_data *d, const char *sec, const char *key)
+{
+    for (int i = 0; i < d->n; ++i)
+        if (!strcmp(d->e[i].section, sec) && !strcmp(d->e[i].key, key)) {
+            d->e[i].used = 1;
+            return &d->e[i];
+        }
+    return NULL;
+}
+
+static const char *get_str(ini_data *d, const char *sec, const char *key, const char *def)
+{
+    entry *e = find(d, sec, key);
+    return e ? e->value : def;
+}
+
+static double get_num(ini_data *d, const char *sec, const char *key, double def, double lo, double hi)
+{
+    entry *e = find(d, sec, key);
+    if (!e)
+        return def;
+    char *end;
+    errno = 0;
+    const double v = strtod(e->value, &end);
+    while (*end && isspace((unsigned char)*end))
+        ++end;
+    if (end == e->value || *end || errno || !isfinite(v))
+        die("[%s] %s = '%s' is not a number", sec, key, e->value);
+    if (v < lo || v > hi)
+        die("[%s] %s = %g is outside the allowed range [%g, %g]", sec, key, v, lo, hi);
+    return v;
+}
+
+static int get_choice(ini_data *d, const char *sec, const char *key, const char *def,
+                      const char *const *choices)
+{
+    const char *v = get_str(d, sec, key, def);
+    char list[256] = "";
+    for (int i = 0; choices[i]; ++i) {
+        if (!strcmp(v, choices[i]))
+            return i;
+        strncat(list, i ? ", " : "", sizeof list - strlen(list) - 1);
+        strncat(list, choices[i], sizeof list - strlen(list) - 1);
+    }
+    die("[%s] %s = '%s' is not one of: %s", sec, key, v, list);
+    return -1;
+}
+
+static void lib_check(gf_status st, const char *what)
+{
+    if (st)
+        die("%s: %s (%s)", what, gf_error_detail(), gf_strerror(st));
+}
+
+/* ---- initial data -------------------------------------------------------- */
+typedef struct init_data {
+    int shape;
+    double x0, x1, x2, hl, hr, ul, ur, hin, hout, r, K, l;
+    size_t nf;
+    double *fx, *fh, *fu;
+} init_data;
+
+enum { DAM, BOX, SEMICIRCLE, PARABOLA, SINUSOID, FILE_SHAPE };
+
+static void initial(double x, void *ctx, double *h, double *u)
+{
+    const init_data *p = ctx;
+    *u = 0.0;
+    switch (p->shape) {
+    case DAM:
+        *h = x <= p->x0 ? p->hl : p->hr;
+        *u = x <= p->x0 ? p->ul : p->ur;
+        break;
+    case BOX:
+        *h = (x > p->x1 && x <= p->x2) ? p->hin : p->hout;
+        break;
+    case SEMICIRCLE: {
+        const double d = x - p->x0;
+        *h = d * d < p->r * p->r ? sqrt(p->r * p->r - d * d) : 0.0;
+        break;
+    }
+    case PARABOLA:
+        *h = fmax(p->K / 10.0, p->K - p->l * (x - p->x0) * (x - p->x0));
+        break;
+    case SINUSOID: /* kinetic paper, section 4, fifth test */
+        *h = (x > 0.6 && x < 1.6)
+                 ? fmax(0.9 * sin(3.14159265358979323846 * (x - 0.6)) -
+                            0.3 * sin(2 * 3.14159265358979323846 * (x - 0.6)), 0.1)
+                 : 0.1;
+        break;
+    default: { /* linear interpolation in the table, constant outside */
+        size_t i = 0;
+        if (x <= p->fx[0]) {
+            *h = p->fh[0];
+            *u = p->fu[0];
+            return;
+        }
+        if (x >= p->fx[p->nf - 1]) {
+            *h = p->fh[p->nf - 1];
+            *u = p->fu[p->nf - 1];
+            return;
+        }
+        while (p->fx[i + 1] < x)
+            ++i;
+        const double w = (x - p->fx[i]) / (p->fx[i + 1] - p->fx[i]);
+        *h = (1 - w) * p->fh[i] + w * p->fh[i + 1];
+        *u = (1 - w) * p->fu[i] + w * p->fu[i + 1];
+    }
+    }
+}
+
+/* read a CSV with a header naming the columns; returns rows */
+static size_t read_csv(const char *path, const char *const *cols, int ncols, double **out)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        die("cannot open '%s': %s", path, strerror(errno));
+    char line[4096];
+    if (!fgets(line, sizeof line, f))
+        die("'%s' is empty", path);
+    int idx[8], nhead = 0;
+    char *names[64];
+    for (char *t = strtok(line, ",\r\n"); t && nhead < 64; t = strtok(NULL, ",\r\n")) {
+        while (isspace((unsigned char)*t))
+            ++t;
+        names[nhead++] = t;
+    }
+    for (int c = 0; c < ncols; ++c) {
+        idx[c] = -1;
+        for (int k = 0; k < nhead; ++k)
+            if (!strcmp(names[k], cols[c]))
+                idx[c] = k;
+        if (idx[c] < 0)
+            die("'%s' has no column '%s' in its header", path, cols[c]);
+    }
+    size_t n = 0, cap = 256;
+    for (int c = 0; c < ncols; ++c)
+        out[c] = malloc(cap * sizeof **out);
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == '#' || line[0] == '\n')
+            continue;
+        double v[64];
+        int k = 0;
+        for (char *t = strtok(line, ",\r\n"); t && k < 64; t = strtok(NULL, ",\r\n")) {
+            char *end;
+            v[k] = strtod(t, &end);
+            if (end == t || !isfinite(v[k]))
+                die("'%s' line %zu: '%s' is not a number", path, n + 2, t);
+            ++k;
+        }
+        if (k < nhead)
+            die("'%s' line %zu: %d values, the header has %d", path, n + 2, k, nhead);
+        if (n == cap) {
+            cap *= 2;
+            for (int c = 0; c < ncols; ++c)
+                out[c] = realloc(out[c], cap * sizeof **out);
+        }
+        for (int c = 0; c < ncols; ++c)
+            out[c][n] = v[idx[c]];
+        ++n;
+    }
+    fclose(f);
+    return n;
+}
+
+/* ---- main ------------------------------------------------------------------ */
+int main(int argc, char **argv)
+{
+    if (argc < 2 || !strcmp(argv[1], "-h") || !strcmp(argv[1], "--help")) {
+        fprintf(stderr, "usage: granflow1d CASE.ini [section.key=value ...]\n"
+                        "Runs a 1D Savage-Hutter case; the schema is documented in the source header\n"
+                        "and in README.md.\n");
+        return argc < 2 ? 2 : 0;
+    }
+    file_name = argv[1];
+    static ini_data d;
+    const int ir = ini_parse(argv[1], handler, &d);
+    if (ir < 0)
+        die("cannot read the case file");
+    if (ir > 0)
+        die("syntax error on line %d", ir);
+    for (int a = 2; a < argc; ++a) {
+        char sec[32], key[32];
+        const char *dot = strchr(argv[a], '.'), *eq = strchr(argv[a], '=');
+        if (!dot || !eq || dot > eq || dot - argv[a] >= 32 || eq - dot - 1 >= 32)
+            die("override '%s' is not section.key=value", argv[a]);
+        snprintf(sec, sizeof sec, "%.*s", (int)(dot - argv[a]), argv[a]);
+        snprintf(key, sizeof key, "%.*s", (int)(eq - dot - 1), dot + 1);
+        put(&d, sec, key, eq + 1);
+    }
+
+    gf_sh1d_config c;
+    gf_sh1d_config_init(&c);
+    /* model */
+    c.epsilon = get_num(&d, "model", "epsilon", 1.0, 1e-300, 1e300);
+    c.g = get_num(&d, "model", "g", 1.0, 0.0, 1e300);
+    c.chi = get_num(&d, "model", "chi", 1.0, -1e300, 1e300);
+    static const char *const ep_names[] = {"isotropic", "savageHutter", NULL};
+    const int ep = get_choice(&d, "model", "earth_pressure", "isotropic", ep_names);
+    const double phi = get_num(&d, "model", "phi", NAN, 0.0, 90.0);
+    const double delta = get_num(&d, "model", "delta", NAN, 0.0, 90.0);
+    if (ep == 1 && (isnan(phi) || isnan(delta)))
+        die("[model] earth_pressure = savageHutter needs phi and delta");
+    {
+        gf_status st = gf_earth_pressure_init(&c.earth_pressure, (gf_earth_pressure_model)ep,
+                                              phi * DEG, delta * DEG);
+        if (st)
+            die("[model] phi = %g, delta = %g: %s", phi, delta, gf_error_detail());
+    }
+    const char *law = get_str(&d, "model", "friction", "none");
+    if (gf_friction_init(&c.friction, law))
+        die("[model] friction: %s", gf_error_detail());
+    if (!strcmp(law, "coulomb")) {
+        if (isnan(delta) && !find(&d, "friction", "mu"))
+            die("[model] friction = coulomb needs [model] delta or [friction] mu");
+        if (!isnan(delta))
+            lib_check(gf_friction_set(&c.friction, "mu", tan(delta * DEG)), "[model] delta");
+    }
+    for (int i = 0; i < d.n; ++i)
+        if (!strcmp(d.e[i].section, "friction")) {
+            const double v = get_num(&d, "friction", d.e[i].key, 0, -1e300, 1e300);
+            if (gf_friction_set(&c.friction, d.e[i].key, v))
+                die("[friction] %s: %s", d.e[i].key, gf_error_detail());
+        }
+    if (gf_friction_check(&c.friction))
+        die("[friction]: %s", gf_error_detail());
+
+    /* topography */
+    static const char *const topo_names[] = {"flat", "chute", "tabulated", NULL};
+    const int tt = get_choice(&d, "topography", "type", "flat", topo_names);
+    gf_topography *topo = NULL;
+    if (tt == 0) {
+        c.zeta = get_num(&d, "topography", "zeta", 0.0, -89.9, 89.9) * DEG;
+    } else if (tt == 1) {
+        const double z0 = get_num(&d, "topography", "zeta0", NAN, -89.9, 89.9);
+        if (isnan(z0))
+            die("[topography] type = chute needs zeta0");
+        lib_check(gf_topography_chute_alloc(z0 * DEG,
+                                            get_num(&d, "topography", "zeta1", 0.0, -89.9, 89.9) * DEG,
+                                            get_num(&d, "topography", "x1", 17.5, -1e300, 1e300),
+                                            get_num(&d, "topography", "x2", 21.5, -1e300, 1e300), &topo),
+                  "[topography]");
+    } else {
+        const char *path = get_str(&d, "topography", "file", NULL);
+        if (!path)
+            die("[topography] type = tabulated needs file");
+        static const char *const cols[] = {"x", "zeta"};
+        double *col[2];
+        const size_t n = read_csv(path, cols, 2, col);
+        for (size_t i = 0; i < n; ++i)
+            col[1][i] *= DEG;
+        lib_check(gf_topography_tabulated_alloc(col[0], col[1], n, &topo), "[topography] file");
+        free(col[0]);
+        free(col[1]);
+    }
+    c.topo = topo;
+
+    /* domain */
+    c.x_min = get_num(&d, "domain", "x_min", 0.0, -1e300, 1e300);
+    c.x_max = get_num(&d, "domain", "x_max", 30.0, -1e300, 1e300);
+    c.n_cells = (size_t)get_num(&d, "domain", "cells", 256, 4, 1e8);
+    static const char *const bc_names[] = {"transmissive", "wall", "periodic", NULL};
+    c.bc_left = (gf_bc)get_choice(&d, "domain", "bc_left", "transmissive", bc_names);
+    c.bc_right = (gf_bc)get_choice(&d, "domain", "bc_right", "transmissive", bc_names);
+
+    /* initial */
+    static const char *const shapes[] = {"dam", "box", "semicircle", "parabola", "sinusoid", "file", NULL};
+    init_data ini = {0};
+    ini.shape = get_choice(&d, "initial", "shape", "dam", shapes);
+    ini.x0 = get_num(&d, "initial", "x0", 0.5 * (c.x_min + c.x_max), -1e300, 1e300);
+    ini.hl = get_num(&d, "initial", "h_left", 1.0, 0, 1e300);
+    ini.hr = get_num(&d, "initial", "h_right", 0.0, 0, 1e300);
+    ini.ul = get_num(&d, "initial", "u_left", 0.0, -1e300, 1e300);
+    ini.ur = get_num(&d, "initial", "u_right", 0.0, -1e300, 1e300);
+    ini.x1 = get_num(&d, "initial", "x1", c.x_min, -1e300, 1e300);
+    ini.x2 = get_num(&d, "initial", "x2", c.x_max, -1e300, 1e300);
+    ini.hin = get_num(&d, "initial", "h_in", 1.0, 0, 1e300);
+    ini.hout = get_num(&d, "initial", "h_out", 0.0, 0, 1e300);
+    ini.r = get_num(&d, "initial", "radius", 1.0, 0, 1e300);
+    ini.K = get_num(&d, "initial", "K", 1.0, 0, 1e300);
+    ini.l = get_num(&d, "initial", "l", 4.0, 0, 1e300);
+    if (ini.shape == FILE_SHAPE) {
+        const char *path = get_str(&d, "initial", "file", NULL);
+        if (!path)
+            die("[initial] shape = file needs file");
+        static const char *const cols[] = {"x", "h", "u"};
+        double *col[3];
+        ini.nf = read_csv(path, cols, 3, col);
+        if (ini.nf < 2)
+            die("[initial] file '%s' needs at least 2 rows", path);
+        ini.fx = col[0];
+        ini.fh = col[1];
+        ini.fu = col[2];
+    }
+
+    /* solver */
+    static const char *const methods[] = {"rkdg", "kinetic", NULL};
+    const int method = get_choice(&d, "solver", "method", "rkdg", methods);
+    c.degree = (int)get_num(&d, "solver", "degree", 2, 0, 2);
+    c.scheme = (int)get_num(&d, "solver", "scheme", 3, 1, 3);
+    c.cfl = get_num(&d, "solver", "cfl", 0.0, 0.0, 1.0);
+    c.dt_fixed = get_num(&d, "solver", "dt", 0.0, 0.0, 1e300);
+    static const char *const onoff[] = {"off", "on", NULL};
+    c.limiter = get_choice(&d, "solver", "limiter", "on", onoff);
+    c.gamma = get_num(&d, "solver", "gamma", 0.5, 1e-12, 1.0);
+    c.tvb_m = get_num(&d, "solver", "tvb_m", 0.0, 0.0, 1e300);
+    c.h_eps = get_num(&d, "solver", "h_eps", 1e-10, 1e-300, 1.0);
+    c.h_semi = get_num(&d, "solver", "h_semi", 1e-6, 1e-300, 1.0);
+
+    /* output */
+    double times[MAXT];
+    int nt = 0;
+    {
+        char buf[512];
+        snprintf(buf, sizeof buf, "%s", get_str(&d, "output", "times", ""));
+        for (char *t = strtok(buf, " ,\t"); t; t = strtok(NULL, " ,\t")) {
+            char *end;
+            if (nt == MAXT)
+                die("[output] times: more than %d times", MAXT);
+            times[nt] = strtod(t, &end);
+            if (end == t || *end || !(times[nt] >= 0) || (nt && times[nt] <= times[nt - 1]))
+                die("[output] times: '%s' is not a time after the previous one", t);
+            ++nt;
+        }
+        if (!nt)
+            die("[output] times: give at least one output time");
+    }
+    const char *dir = get_str(&d, "output", "dir", ".");
+    char stem[256];
+    {
+        const char *b = strrchr(argv[1], '/');
+        snprintf(stem, sizeof stem, "%s", b ? b + 1 : argv[1]);
+        char *dotp = strrchr(stem, '.');
+        if (dotp)
+            *dotp = 0;
+    }
+    const char *name = get_str(&d, "output", "name", stem);
+    const int plot = get_choice(&d, "output", "plot", "no", (const char *const[]){"no", "yes", NULL});
+    const int exact = get_choice(&d, "output", "exact", "no", (const char *const[]){"no", "riemann", NULL});
+    const double front_h = get_num(&d, "output", "front_h", 1e-3, 0.0, 1e300);
+    const double every = get_num(&d, "output", "every", 0.0, 0.0, 1e300);
+
+    for (int i = 0; i < d.n; ++i)
+        if (!d.e[i].used)
+            die("unknown key [%s] %s (see the schema in README.md)", d.e[i].section, d.e[i].key);
+
+    gf_riemann rp;
+    if (exact) {
+        if (ini.shape != DAM || tt != 0 || c.zeta != 0.0 || strcmp(law, "none"))
+            die("[output] exact = riemann needs shape = dam on flat ground without friction");
+        const double beta = c.epsilon * c.earth_pressure.k_act; /* K constant: isotropic or phi = delta */
+        if (c.earth_pressure.k_act != c.earth_pressure.k_pass)
+            die("[output] exact = riemann needs K_act = K_pass (isotropic, or phi = delta)");
+        lib_check(gf_riemann_solve(&rp, beta, ini.hl, ini.ul, ini.hr, ini.ur, ini.x0), "exact solution");
+    }
+
+    gf_sh1d *s;
+    if (gf_sh1d_alloc(method ? gf_sh1d_kinetic : gf_sh1d_rkdg, &c, &s))
+        die("[solver]/[domain]: %s", gf_error_detail());
+    if (gf_sh1d_set_initial(s, initial, &ini))
+        die("[initial]: %s", gf_error_detail());
+
+    char path[1024];
+    mkpath(path, sizeof path, "%s/%s.summary", dir, name);
+    FILE *sum = fopen(path, "w");
+    if (!sum)
+        die("cannot write '%s': %s", path, strerror(errno));
+    const double m0 = gf_sh1d_mass(s);
+    const size_t n = gf_sh1d_n_cells(s);
+    double *h = malloc(n * sizeof *h), *u = malloc(n * sizeof *u);
+    fprintf(sum, "# granflow1d %s: %s, %zu cells\n", argv[1], method ? "kinetic" : "rkdg", n);
+    fprintf(sum, "time,mass,mass_rel_change,max_h,front,tail,max_speed,steps,cpu_s\n");
+    printf("%-10s %-12s %-10s %-10s %-10s %-10s %-8s %s\n", "time", "mass", "max_h", "front", "tail",
+           "max|u|", "steps", "cpu_s");
+    const clock_t c0 = clock();
+    double next_report = every > 0 ? every : HUGE_VAL;
+    for (int k = 0; k < nt; ++k) {
+        while (gf_sh1d_time(s) < times[k] - 1e-12) {
+            const double target = fmin(times[k], next_report);
+            if (gf_sh1d_advance_to(s, target)) {
+                fclose(sum);
+                die("run failed: %s", gf_error_detail());
+            }
+            if (gf_sh1d_time(s) >= next_report - 1e-12) {
+                printf("  t = %g, max|u| = %.3g, steps %zu\n", gf_sh1d_time(s), gf_sh1d_max_speed(s),
+                       gf_sh1d_steps(s));
+                next_report += every;
+            }
+        }
+        gf_sh1d_means(s, h, u);
+        double hmax = 0, front = NAN, tail = NAN;
+        for (size_t i = 0; i < n; ++i) {
+            hmax = fmax(hmax, h[i]);
+            if (h[i] >= front_h) {
+                const double x = gf_sh1d_cell_centre(s, i);
+                front = isnan(front) ? x : fmax(front, x);
+                tail = isnan(tail) ? x : fmin(tail, x);
+            }
+        }
+        const double cpu = (double)(clock() - c0) / CLOCKS_PER_SEC, mass = gf_sh1d_mass(s);
+        fprintf(sum, "%g,%.15g,%.3e,%.10g,%.10g,%.10g,%.10g,%zu,%.4f\n", times[k], mass,
+                (mass - m0) / m0, hmax, front, tail, gf_sh1d_max_speed(s), gf_sh1d_steps(s), cpu);
+        printf("%-10g %-12.8g %-10.5g %-10.5g %-10.5g %-10.3g %-8zu %.3f\n", times[k], mass, hmax,
+               front, tail, gf_sh1d_max_speed(s), gf_sh1d_steps(s), cpu);
+
+        mkpath(path, sizeof path, "%s/%s_t%g.csv", dir, name, times[k]);
+        FILE *f = fopen(path, "w");
+        if (!f)
+            die("cannot write '%s': %s", path, strerror(errno));
+        fprintf(f, "x,h,u%s%s\n", topo ? ",X,Z,Xs,Zs" : "", exact ? ",h_exact,u_exact" : "");
+        for (size_t i = 0; i < n; ++i) {
+            const double x = gf_sh1d_cell_centre(s, i);
+            fprintf(f, "%.10g,%.12g,%.12g", x, h[i], u[i]);
+            if (topo) {
+                double X, Z, z, kap;
+                gf_topography_position(topo, x, &X, &Z);
+                gf_topography_eval(topo, x, &z, &kap);
+                fprintf(f, ",%.10g,%.10g,%.10g,%.10g", X, Z, X + h[i] * sin(z), Z + h[i] * cos(z));
+            }
+            if (exact) {
+                double he, ue;
+                gf_riemann_sample(&rp, x, times[k], &he, &ue);
+                fprintf(f, ",%.12g,%.12g", he, ue);
+            }
+            fprintf(f, "\n");
+        }
+        fclose(f);
+    }
+    fclose(sum);
+
+    if (plot) {
+        mkpath(path, sizeof path, "%s/%s.gp", dir, name);
+        FILE *g = fopen(path, "w");
+        if (!g)
+            die("cannot write '%s'", path);
+        fprintf(g, "set datafile separator ','\nset terminal pngcairo size 900,%d font ',10'\n",
+                topo ? 900 : 600);
+        fprintf(g, "set output '%s/%s.png'\nset multiplot layout %d,1 title '%s'\n", dir, name,
+                topo ? 3 : 2, name);
+        fprintf(g, "set key outside right\nset grid\nset xlabel 'x'\n");
+        for (int panel = 0; panel < 2; ++panel) {
+            fprintf(g, "set ylabel '%s'\nplot ", panel ? "u" : "h");
+            for (int k = 0; k < nt; ++k) {
+                fprintf(g, "%s'%s/%s_t%g.csv' skip 1 using 1:%d with lines lw 2 title 't = %g'", k ? ", " : "",
+                        dir, name, times[k], panel ? 3 : 2, times[k]);
+                if (exact)
+                    fprintf(g, ", '%s/%s_t%g.csv' skip 1 using 1:%d with lines dt 2 lc rgb 'black' "
+                               "title 'exact t = %g'", dir, name, times[k], panel ? (topo ? 9 : 5) : (topo ? 8 : 4),
+                            times[k]);
+            }
+            fprintf(g, "\n");
+        }
+        if (topo) {
+            fprintf(g, "set ylabel 'Z (vertical)'\nset xlabel 'X (horizontal)'\nset size ratio -1\n"
+                       "plot '%s/%s_t%g.csv' skip 1 using 4:5 with lines lc rgb 'black' lw 2 title 'bed', "
+                       "'' skip 1 using 6:7 with lines lw 2 title 'surface t = %g'\n",
+                    dir, name, times[nt - 1], times[nt - 1]);
+        }
+        fprintf(g, "unset multiplot\n");
+        fclose(g);
+        char cmd[1200];
+        mkpath(cmd, sizeof cmd, "gnuplot '%s/%s.gp'", dir, name);
+        if (system(cmd) != 0)
+            fprintf(stderr, "granflow1d: warning: gnuplot failed on %s/%s.gp\n", dir, name);
+    }
+    free(h);
+    free(u);
+    free(ini.fx);
+    free(ini.fh);
+    free(ini.fu);
+    gf_sh1d_free(s);
+    gf_topography_free(topo);
+    return 0;
+}
