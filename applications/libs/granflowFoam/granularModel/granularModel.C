@@ -1,0 +1,114 @@
+#include "granularModel.H"
+#include "error.H"
+#include "Switch.H"
+#include "mathematicalConstants.H"
+
+Foam::scalar Foam::granflow::granularModel::readScalar
+(
+    const word& key,
+    scalar lo,
+    scalar hi,
+    const scalar* deflt
+) const
+{
+    if (!dict_.found(key))
+    {
+        if (deflt)
+        {
+            return *deflt;
+        }
+        FatalIOErrorInFunction(dict_)
+            << "Missing entry " << key << " (allowed range [" << lo << ", " << hi << "])"
+            << exit(FatalIOError);
+    }
+    const scalar v = dict_.get<scalar>(key);
+    if (!(v >= lo && v <= hi))
+    {
+        FatalIOErrorInFunction(dict_)
+            << "Invalid entry " << key << " " << v << ": allowed range [" << lo << ", " << hi
+            << "]" << exit(FatalIOError);
+    }
+    return v;
+}
+
+
+bool Foam::granflow::granularModel::readSwitch(const word& key) const
+{
+    if (!dict_.found(key))
+    {
+        return true;
+    }
+    return Switch(dict_.get<word>(key));
+}
+
+
+Foam::granflow::granularModel::granularModel(const dictionary& dict)
+:
+    dict_(dict),
+    rho_(readScalar("rho", 1e-6, 1e6)),
+    xi_(1),
+    hMin_(1e-6),
+    earthPressure_(),
+    friction_(dict),
+    lateralPressure_(readSwitch("lateralPressure")),
+    centrifugalPressure_(readSwitch("centrifugalPressure")),
+    lateralPressureFeedback_(readSwitch("lateralPressureFeedback"))
+{
+    const scalar one = 1, tiny = 1e-6;
+    xi_ = readScalar("xi", 1e-6, 2, &one);
+    hMin_ = readScalar("hMin", 0, 1, &tiny);
+
+    const word model(dict.getOrDefault<word>("earthPressure", "isotropic"));
+    gf_earth_pressure_model m;
+    if (gf_earth_pressure_model_from_name(model.c_str(), &m) != GF_SUCCESS)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid entry earthPressure " << model << ": " << gf_error_detail()
+            << exit(FatalIOError);
+    }
+    scalar phi = 0, delta = 0;
+    if (m == GF_EARTH_PRESSURE_SAVAGE_HUTTER)
+    {
+        if (!dict.isDict("savageHutterCoeffs"))
+        {
+            FatalIOErrorInFunction(dict)
+                << "earthPressure savageHutter needs the sub-dictionary savageHutterCoeffs"
+                << " with phi and delta [deg]" << exit(FatalIOError);
+        }
+        const dictionary& c = dict.subDict("savageHutterCoeffs");
+        phi = c.get<scalar>("phi");
+        delta = c.get<scalar>("delta");
+    }
+    const scalar deg = constant::mathematical::pi/180;
+    if (gf_earth_pressure_init(&earthPressure_, m, phi*deg, delta*deg) != GF_SUCCESS)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid entry savageHutterCoeffs: " << gf_error_detail() << exit(FatalIOError);
+    }
+}
+
+
+void Foam::granflow::granularModel::earthPressure
+(
+    const areaScalarField& divUs,
+    areaScalarField& K
+) const
+{
+    forAll(K, facei)
+    {
+        K[facei] = gf_earth_pressure_k(&earthPressure_, divUs[facei]);
+    }
+    K.correctBoundaryConditions();
+}
+
+
+void Foam::granflow::granularModel::report(Ostream& os) const
+{
+    os  << "Granular model: rho = " << rho_ << ", xi = " << xi_ << ", hMin = " << hMin_
+        << ", friction " << friction_.lawName()
+        << ", earth pressure " << (isotropic() ? "isotropic" : "savageHutter")
+        << " (K_act " << earthPressure_.k_act << ", K_pass " << earthPressure_.k_pass << ")"
+        << nl << "    terms: lateralPressure " << Switch(lateralPressure_)
+        << ", centrifugalPressure " << Switch(centrifugalPressure_)
+        << ", lateralPressureFeedback " << Switch(lateralPressureFeedback_) << endl;
+}

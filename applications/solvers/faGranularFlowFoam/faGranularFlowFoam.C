@@ -1,0 +1,184 @@
+/*---------------------------------------------------------------------------*\
+    granflow — faGranularFlowFoam
+
+Description
+    Shallow granular flow on a curved three-dimensional surface: the
+    depth-integrated model of Rauter & Tuković (finite-area paper) with the
+    velocity kept in 3D Cartesian components and the basal pressure found
+    from the surface-normal projection of the momentum equation.
+
+      pb = rho (-h g.n + xi n.div(h Us Us) + n.grad(K h pb)/(2 rho))   eq. 33/50, explicit
+      ddt(h Us) + xi div(h Us Us) + nu Us
+          = h g - grad(K h pb)/(2 rho) + n pb/rho                       eq. 31/51, implicit
+      ddt(h) + div(h Us) = 0                                            eq. 30/52, implicit
+
+    (n = faceAreaNormals, out of the terrain; the paper's n_b = -n.)  The
+    three are solved in sequence and iterated to the initial-residual
+    tolerances of faSolution/granularFlow with under-relaxation (section 3.6:
+    the initial residual of the h equation; for Us the relative L1 change
+    between outer iterations);
+    implicit Euler on the first step, then the scheme of faSchemes (backward,
+    eq. 46); time step from the Courant number (eqs. 47-48).  Dry faces
+    (h < hMin) get Us = 0 on the matrix level.  Friction (nu) and earth
+    pressure (K) come from libgranflow.
+
+Usage
+    faGranularFlowFoam [-parallel]
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "faCFD.H"
+#include "zeroGradientFaPatchFields.H"
+#include "granularModel.H"
+#include "faConvectionScheme.H"
+#include "fullOperators.H"
+#include "relaxConsistent.H"
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Shallow granular flow on curved 3D surfaces (Rauter-Tukovic model)"
+        " with libgranflow physics"
+    );
+    #include "setRootCase.H"
+    #include "createTime.H"
+    #include "createMesh.H"
+    #include "createFaMesh.H"
+    #include "createFields.H"
+
+    const scalar mass0 = gSum(h.primitiveField()*aMesh.S().field());
+    Info<< "Initial mass (volume) " << mass0 << " m3" << nl << endl;
+    cpuTime timer;
+    scalar tPressure = 0, tMomentum = 0, tContinuity = 0;
+    label nIterTotal = 0;
+
+    while (runTime.run())
+    {
+        #include "readControls.H"
+        #include "CourantNo.H"
+        #include "setDeltaT.H"
+        ++runTime;
+        Info<< "Time = " << runTime.timeName() << "  deltaT = " << runTime.deltaTValue()
+            << "  Courant " << CoNum << endl;
+
+        scalar resUs = GREAT, resH = GREAT;
+        label corr = 0;
+        for (corr = 1; corr <= nOuterCorr; ++corr)
+        {
+            // ---- basal pressure, eq. (33)/(50), explicit --------------------
+            scalar t0 = timer.elapsedCpuTime();
+            if (!model.isotropic())
+            {
+                model.earthPressure(fac::div(phis), K);
+            }
+            {
+                areaScalarField pbNew(-rho*h*(g & n));
+                if (model.centrifugalPressure())
+                {
+                    pbNew += rho*xi*(n & gfDivFull(phi2s, Us));
+                }
+                if (model.lateralPressureFeedback())
+                {
+                    pbNew += 0.5*(n & gfGradFull(K*h*pb));
+                }
+                pb = pbNew;
+                forAll(h, facei)
+                {
+                    if (h[facei] < model.hMin())
+                    {
+                        pb[facei] = 0;
+                    }
+                }
+                pb.correctBoundaryConditions();
+            }
+            if (model.frictionOn())
+            {
+                model.friction().evaluate(h, Us, pb, model.rho(), mag(g.value()), tauB, nuB);
+            }
+            tPressure += timer.elapsedCpuTime() - t0;
+
+            // ---- momentum, eq. (31)/(51), implicit -----------------------------
+            t0 = timer.elapsedCpuTime();
+            faVectorMatrix UsEqn
+            (
+                fam::ddt(h, Us)
+              + xi*fam::div(phi2s, Us)
+             ==
+                h*g
+              + n*pb/rho
+            );
+            if (model.lateralPressure())
+            {
+                UsEqn += gfGradFull(K*h*pb)/(2*rho);
+            }
+            if (model.frictionOn())
+            {
+                UsEqn += fam::Sp(nuB, Us);
+            }
+            relaxConsistent(UsEqn);
+            #include "dryFaces.H"
+            const vectorField UsPrev(Us.primitiveField());
+            UsEqn.solve();
+            Us -= n*(n & Us);   // keep Us tangential (eq. 28)
+            Us.correctBoundaryConditions();
+            // Us convergence: relative L1 change over the outer iteration
+            // (the initial residual of the 3-component system keeps the
+            // level of the normal part removed above and cannot be used)
+            resUs = gSum(mag(Us.primitiveField() - UsPrev))
+                   /max(gSum(mag(Us.primitiveField())), VSMALL);
+            phis = fac::interpolate(Us) & aMesh.Le();
+            tMomentum += timer.elapsedCpuTime() - t0;
+
+            // ---- continuity, eq. (30)/(52), implicit ---------------------------
+            t0 = timer.elapsedCpuTime();
+            faScalarMatrix hEqn
+            (
+                fam::ddt(h)
+              + fam::div(phis, h)
+            );
+            relaxConsistent(hEqn);
+            const SolverPerformance<scalar> spH = hEqn.solve();
+            resH = spH.initialResidual();
+            phi2s = hEqn.flux();
+            tContinuity += timer.elapsedCpuTime() - t0;
+
+            if (corr > 1 && resUs < tolUs && resH < tolH)
+            {
+                break;
+            }
+        }
+        {
+            // final continuity solve without under-relaxation: the relaxed
+            // equation is only satisfied at convergence, the unrelaxed one
+            // conserves mass to the linear-solver tolerance every step
+            const scalar t0 = timer.elapsedCpuTime();
+            faScalarMatrix hEqn(fam::ddt(h) + fam::div(phis, h));
+            hEqn.solve();
+            phi2s = hEqn.flux();
+            tContinuity += timer.elapsedCpuTime() - t0;
+        }
+        nIterTotal += min(corr, nOuterCorr);
+        if (corr > nOuterCorr)
+        {
+            Info<< "    not converged in " << nOuterCorr << " iterations: initial residuals Us "
+                << resUs << ", h " << resH << endl;
+        }
+
+        runTime.write();
+        if (runTime.writeTime())
+        {
+            const scalar mass = gSum(h.primitiveField()*aMesh.S().field());
+            Info<< "granflow: t = " << runTime.timeName()
+                << " s, wall " << runTime.elapsedClockTime() << " s, mass " << mass
+                << " m3 (change " << mass - mass0 << " m3, inflow included"
+                << "), max h " << gMax(h.primitiveField())
+                << " m, max |Us| " << gMax(mag(Us.primitiveField())) << " m/s" << endl;
+        }
+    }
+
+    Info<< nl << "CPU seconds: pressure " << tPressure << ", momentum " << tMomentum
+        << ", continuity " << tContinuity << "; outer iterations " << nIterTotal
+        << "; total " << runTime.elapsedCpuTime() << nl << "End" << nl << endl;
+    return 0;
+}

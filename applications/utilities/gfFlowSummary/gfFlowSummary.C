@@ -1,0 +1,107 @@
+/*---------------------------------------------------------------------------*\
+    granflow — gfFlowSummary
+
+Description
+    For every selected time: volume (mass/rho) sum(h S), max thickness, max
+    speed, and the runout — the furthest face centre, projected on a
+    direction, among faces with h >= threshold (default 0.01 m, the paper's
+    level curve) — appended as a row to postProcessing/gfFlowSummary.dat.
+    With -csv, also writes postProcessing/profiles/<time>.csv with every face:
+    x,y,z,h,speed,Ux,Uy,Uz[,pb].
+
+Usage
+    gfFlowSummary [-time ...] [-direction '(1 0 0)'] [-threshold 0.01] [-csv]
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "faCFD.H"
+#include "timeSelector.H"
+#include "OFstream.H"
+
+int main(int argc, char *argv[])
+{
+    argList::addNote("Mass, max thickness, max speed and runout per time (granflow)");
+    timeSelector::addOptions(true, false);
+    argList::addOption("direction", "vector", "runout direction (default (1 0 0))");
+    argList::addOption("threshold", "scalar", "thickness of the runout level curve (0.01 m)");
+    argList::addBoolOption("csv", "write every face to postProcessing/profiles/<time>.csv");
+    #include "setRootCase.H"
+    #include "createTime.H"
+    instantList timeDirs = timeSelector::select0(runTime, args);
+    #include "createMesh.H"
+    #include "createFaMesh.H"
+
+    vector dir = args.getOrDefault<vector>("direction", vector(1, 0, 0));
+    if (mag(dir) < SMALL)
+    {
+        FatalErrorInFunction << "-direction must not be zero" << exit(FatalError);
+    }
+    dir /= mag(dir);
+    const scalar threshold = args.getOrDefault<scalar>("threshold", 0.01);
+    const bool csv = args.found("csv");
+
+    const fileName outDir = runTime.globalPath()/"postProcessing";
+    mkDir(outDir);
+    OFstream table(outDir/"gfFlowSummary.dat");
+    table.precision(12);
+    table << "# time volume max_h max_speed runout(h>=" << threshold << ")" << nl;
+
+    forAll(timeDirs, timei)
+    {
+        runTime.setTime(timeDirs[timei], timei);
+        IOobject hHeader("h", runTime.timeName(), mesh, IOobject::MUST_READ);
+        if (!hHeader.typeHeaderOk<areaScalarField>(true))
+        {
+            continue;
+        }
+        const areaScalarField h(hHeader, aMesh);
+        const areaVectorField Us
+        (
+            IOobject("Us", runTime.timeName(), mesh, IOobject::MUST_READ), aMesh
+        );
+        IOobject pbHeader("pb", runTime.timeName(), mesh, IOobject::MUST_READ);
+        autoPtr<areaScalarField> pb;
+        if (pbHeader.typeHeaderOk<areaScalarField>(true))
+        {
+            pb.reset(new areaScalarField(pbHeader, aMesh));
+        }
+        const vectorField& C = aMesh.areaCentres().primitiveField();
+        const scalarField speed(mag(Us.primitiveField()));
+        scalar runout = -GREAT;
+        forAll(h, i)
+        {
+            if (h[i] >= threshold)
+            {
+                runout = max(runout, C[i] & dir);
+            }
+        }
+        reduce(runout, maxOp<scalar>());
+        const scalar volume = gSum(h.primitiveField()*aMesh.S().field());
+        table << runTime.timeName() << ' ' << volume << ' ' << gMax(h.primitiveField()) << ' '
+              << gMax(speed) << ' ' << (runout > -GREAT ? runout : NAN) << nl;
+        Info<< "Time " << runTime.timeName() << ": volume " << volume << " m3, max h "
+            << gMax(h.primitiveField()) << " m, max speed " << gMax(speed) << " m/s, runout "
+            << runout << " m" << endl;
+
+        if (csv)
+        {
+            mkDir(outDir/"profiles");
+            OFstream os(outDir/"profiles"/(runTime.timeName() + ".csv"));
+            os.precision(12);
+            os << "x,y,z,h,speed,Ux,Uy,Uz" << (pb.valid() ? ",pb" : "") << nl;
+            forAll(h, i)
+            {
+                const vector& u = Us[i];
+                os << C[i].x() << ',' << C[i].y() << ',' << C[i].z() << ',' << h[i] << ','
+                   << speed[i] << ',' << u.x() << ',' << u.y() << ',' << u.z();
+                if (pb.valid())
+                {
+                    os << ',' << pb()[i];
+                }
+                os << nl;
+            }
+        }
+    }
+    Info<< "End" << endl;
+    return 0;
+}
