@@ -94,7 +94,7 @@ int main(int argc, char *argv[])
             }
             if (model.frictionOn())
             {
-                model.friction().evaluate(h, Us, pb, model.rho(), mag(g.value()), tauB, nuB);
+                model.friction().evaluate(h, Us, pb, model.rho(), mag(g.value()), model.hMin(), tauB, nuB);
             }
             tPressure += timer.elapsedCpuTime() - t0;
 
@@ -173,6 +173,7 @@ int main(int argc, char *argv[])
                 << " s, wall " << runTime.elapsedClockTime() << " s, mass " << mass
                 << " m3 (change " << mass - mass0 << " m3, inflow included"
                 << "), max h " << gMax(h.primitiveField())
+                << " m, min h " << gMin(h.primitiveField())
                 << " m, max |Us| " << gMax(mag(Us.primitiveField())) << " m/s" << endl;
         }
     }

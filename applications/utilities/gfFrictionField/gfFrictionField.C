@@ -114,7 +114,7 @@ int main(int argc, char *argv[])
             aMesh,
             dimensionedScalar(dimVelocity, Zero)
         );
-        friction.evaluate(h, Us, pb, rho, mag(g.value()), tau, nu);
+        friction.evaluate(h, Us, pb, rho, mag(g.value()), 0, tau, nu);
         tau *= dimensionedScalar("rho", dimDensity, rho);
 
         Info<< "    max |tau_b| = " << gMax(tau.primitiveField()) << " Pa, max nu = "

@@ -77,12 +77,19 @@ void Foam::granflow::basalFriction::evaluate
     const areaScalarField& pb,
     const scalar rho,
     const scalar g,
+    const scalar hMin,
     areaScalarField& tau,
     areaScalarField& nu
 ) const
 {
     forAll(h, facei)
     {
+        if (h[facei] < hMin)
+        {
+            tau[facei] = 0;
+            nu[facei] = 0;
+            continue;
+        }
         const gf_friction_state s{h[facei], mag(Us[facei]), pb[facei], rho, g};
         gf_friction_result r;
         if (gf_friction_eval(&law_, &s, &r) != GF_SUCCESS)
