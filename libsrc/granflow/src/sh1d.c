@@ -1,4 +1,5 @@
 #include "granflow/sh1d.h"
+#include "granflow/exact.h"
 #include "granflow/source.h"
 #include "internal.h"
 #include "sh1d_internal.h"
@@ -287,4 +288,42 @@ double gf_sh1d_static_friction(const gf_sh1d *s, double h, double zeta)
     if (gf_friction_eval(&s->static_friction, &st, &r) != GF_SUCCESS)
         return NAN;
     return r.tau;
+}
+
+double gf_sh1d_l1_difference(const gf_sh1d *a, const gf_sh1d *b)
+{
+    static const double x5[5] = {-0.906179845938664, -0.538469310105683, 0.0, 0.538469310105683,
+                                 0.906179845938664};
+    static const double w5[5] = {0.236926885056189, 0.478628670499366, 0.568888888888889,
+                                 0.478628670499366, 0.236926885056189};
+    double e = 0.0;
+    for (size_t i = 0; i < a->n; ++i)
+        for (int g = 0; g < 5; ++g) {
+            const double x = gf_sh1d_cell_centre(a, i) + 0.5 * a->dx * x5[g];
+            double ha, ua, hb, ub;
+            if (gf_sh1d_eval(a, x, &ha, &ua) || gf_sh1d_eval(b, x, &hb, &ub))
+                return NAN;
+            e += 0.5 * a->dx * w5[g] * fabs(ha - hb);
+        }
+    return e;
+}
+
+double gf_sh1d_l1_error_riemann(const gf_sh1d *s, const gf_riemann *exact, double t)
+{
+    double *h = malloc(2 * s->n * sizeof *h), e = 0.0;
+    if (!h)
+        return NAN;
+    gf_sh1d_means(s, h, h + s->n);
+    for (size_t i = 0; i < s->n; ++i) {
+        double mean = 0.0;
+        for (int k = 0; k < 16; ++k) {
+            double he, ue;
+            gf_riemann_sample(exact, gf_sh1d_cell_centre(s, i) + s->dx * ((k + 0.5) / 16.0 - 0.5), t,
+                              &he, &ue);
+            mean += he / 16.0;
+        }
+        e += fabs(h[i] - mean) * s->dx;
+    }
+    free(h);
+    return e;
 }
