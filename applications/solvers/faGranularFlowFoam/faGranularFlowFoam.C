@@ -156,6 +156,18 @@ int main(int argc, char *argv[])
             faScalarMatrix hEqn(fam::ddt(h) + fam::div(phis, h));
             hEqn.solve();
             phi2s = hEqn.flux();
+            // round-off negatives of the linear solver at dry edges (~1e-26 m)
+            // are set to zero; anything beyond 1e-8 max(h) is reported
+            const scalar hNeg = -gMin(h.primitiveField());
+            if (hNeg > 0)
+            {
+                if (hNeg > 1e-8*gMax(h.primitiveField()))
+                {
+                    Info<< "    warning: negative thickness " << -hNeg << " m set to 0" << endl;
+                }
+                h.primitiveFieldRef() = max(h.primitiveField(), scalar(0));
+                h.correctBoundaryConditions();
+            }
             tContinuity += timer.elapsedCpuTime() - t0;
         }
         nIterTotal += min(corr, nOuterCorr);

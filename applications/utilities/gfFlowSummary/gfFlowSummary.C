@@ -3,7 +3,7 @@
 
 Description
     For every selected time: volume (mass/rho) sum(h S), max thickness, max
-    speed, and the runout — the furthest face centre, projected on a
+    speed, mass-weighted mean speed sum(h |Us| S)/sum(h S), and the runout — the furthest face centre, projected on a
     direction, among faces with h >= threshold (default 0.01 m, the paper's
     level curve) — appended as a row to postProcessing/gfFlowSummary.dat.
     With -csv, also writes postProcessing/profiles/<time>.csv with every face:
@@ -44,7 +44,7 @@ int main(int argc, char *argv[])
     mkDir(outDir);
     OFstream table(outDir/"gfFlowSummary.dat");
     table.precision(12);
-    table << "# time volume max_h max_speed runout(h>=" << threshold << ")" << nl;
+    table << "# time volume max_h max_speed mean_speed runout(h>=" << threshold << ")" << nl;
 
     forAll(timeDirs, timei)
     {
@@ -77,8 +77,11 @@ int main(int argc, char *argv[])
         }
         reduce(runout, maxOp<scalar>());
         const scalar volume = gSum(h.primitiveField()*aMesh.S().field());
+        // mass-weighted mean speed: |momentum| density averaged over the mass
+        const scalar meanSpeed =
+            gSum(h.primitiveField()*speed*aMesh.S().field())/max(volume, VSMALL);
         table << runTime.timeName() << ' ' << volume << ' ' << gMax(h.primitiveField()) << ' '
-              << gMax(speed) << ' ' << (runout > -GREAT ? runout : NAN) << nl;
+              << gMax(speed) << ' ' << meanSpeed << ' ' << (runout > -GREAT ? runout : NAN) << nl;
         Info<< "Time " << runTime.timeName() << ": volume " << volume << " m3, max h "
             << gMax(h.primitiveField()) << " m, max speed " << gMax(speed) << " m/s, runout "
             << runout << " m" << endl;
