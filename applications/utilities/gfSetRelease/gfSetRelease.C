@@ -12,6 +12,9 @@ Description
             // thickness along the face normal up to a sphere (the finite-area
             // paper's release: centre (4 0 -1.5) in slope coordinates, r = 2)
             sphericalCap { centre (4 0 -1.5); radius 2; }
+            // the same with a cylinder (axis through point1, point2): a
+            // laterally uniform release
+            cylindricalCap { point1 (4 -1 -1.5); point2 (4 1 -1.5); radius 2; }
             // face centres inside an axis-aligned box get 'value'
             box { min (0 -1 -1); max (5 1 1); value 0.5; }
             // face centres within 'radius' of the axis point1-point2
@@ -86,6 +89,33 @@ int main(int argc, char *argv[])
                 }
             }
         }
+        else if (type == "cylindricalCap")
+        {
+            const vector p1 = r.get<vector>("point1"), p2 = r.get<vector>("point2");
+            const scalar rad = r.get<scalar>("radius");
+            if (mag(p2 - p1) < SMALL)
+            {
+                FatalIOErrorInFunction(r) << "point1 and point2 coincide" << exit(FatalIOError);
+            }
+            const vector ax = (p2 - p1)/mag(p2 - p1);
+            forAll(C, i)
+            {
+                // s >= 0 with |(C + s n - p1)_perp| = r, perp: normal to the axis
+                const vector d = C[i] - p1, dp = d - (d & ax)*ax;
+                const vector np = N[i] - (N[i] & ax)*ax;
+                const scalar a = magSqr(np), b = np & dp;
+                const scalar disc = b*b - a*(magSqr(dp) - rad*rad);
+                if (a > SMALL && disc > 0)
+                {
+                    const scalar s = (-b + Foam::sqrt(disc))/a;
+                    if (s > 0)
+                    {
+                        hNew[i] = s;
+                        ++nSet;
+                    }
+                }
+            }
+        }
         else if (type == "box")
         {
             const boundBox bb(r.get<vector>("min"), r.get<vector>("max"));
@@ -141,7 +171,8 @@ int main(int argc, char *argv[])
         {
             FatalIOErrorInFunction(dict)
                 << "Unknown region type " << type
-                << "; valid types: sphericalCap, box, cylinder, function" << exit(FatalIOError);
+                << "; valid types: sphericalCap, cylindricalCap, box, cylinder, function"
+                << exit(FatalIOError);
         }
         Info<< "    " << type << ": " << returnReduce(nSet, sumOp<label>()) << " faces" << endl;
     }

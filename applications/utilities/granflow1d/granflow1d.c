@@ -6,7 +6,8 @@
  *
  * The case file schema (every key optional unless stated; angles in degrees):
  *
- *   [model]       epsilon (1), g (1), chi (1), earth_pressure (isotropic |
+ *   [model]       epsilon (1), g (1), chi (1), rho (1: flow density, used by
+ *                 mu_i's inertial number), earth_pressure (isotropic |
  *                 savageHutter), phi, delta (deg; savageHutter needs both),
  *                 friction (none | coulomb | mu_i | voellmy | chezy)
  *   [friction]    the law's coefficients (coulomb: mu, u0; mu_i: mu_s, mu_2,
@@ -19,7 +20,8 @@
  *   [initial]     shape: dam (x0, h_left, h_right, u_left, u_right) |
  *                 box (x1, x2, h_in, h_out) | semicircle (x0, radius) |
  *                 parabola (x0, K, l: max(K/10, K - l (x-x0)^2)) |
- *                 sinusoid (the kinetic paper's test 5) | file (CSV x,h,u)
+ *                 sinusoid (the kinetic paper's test 5) | file (CSV x,h,u) |
+ *                 cap (x0, radius, depth: sqrt(r^2 - (x-x0)^2) - depth, >= 0)
  *   [solver]      method (rkdg | kinetic), degree (2), scheme (3), cfl,
  *                 dt, limiter (on | off), gamma (0.5), tvb_m (0), h_eps, h_semi
  *   [output]      times (list), dir (.), name (case file stem), plot (no | yes),
@@ -162,12 +164,12 @@ static void lib_check(gf_status st, const char *what)
 /* ---- initial data -------------------------------------------------------- */
 typedef struct init_data {
     int shape;
-    double x0, x1, x2, hl, hr, ul, ur, hin, hout, r, K, l;
+    double x0, x1, x2, hl, hr, ul, ur, hin, hout, r, K, l, depth;
     size_t nf;
     double *fx, *fh, *fu;
 } init_data;
 
-enum { DAM, BOX, SEMICIRCLE, PARABOLA, SINUSOID, FILE_SHAPE };
+enum { DAM, BOX, SEMICIRCLE, PARABOLA, SINUSOID, FILE_SHAPE, CAP };
 
 static void initial(double x, void *ctx, double *h, double *u)
 {
@@ -184,6 +186,11 @@ static void initial(double x, void *ctx, double *h, double *u)
     case SEMICIRCLE: {
         const double d = x - p->x0;
         *h = d * d < p->r * p->r ? sqrt(p->r * p->r - d * d) : 0.0;
+        break;
+    }
+    case CAP: { /* cross-section of a sphere or cylinder whose centre lies depth below the bed */
+        const double d = x - p->x0, s2 = p->r * p->r - d * d;
+        *h = s2 > 0.0 ? fmax(0.0, sqrt(s2) - p->depth) : 0.0;
         break;
     }
     case PARABOLA:
@@ -302,6 +309,7 @@ int main(int argc, char **argv)
     c.epsilon = get_num(&d, "model", "epsilon", 1.0, 1e-300, 1e300);
     c.g = get_num(&d, "model", "g", 1.0, 0.0, 1e300);
     c.chi = get_num(&d, "model", "chi", 1.0, -1e300, 1e300);
+    c.rho = get_num(&d, "model", "rho", 1.0, 1e-6, 1e6);
     static const char *const ep_names[] = {"isotropic", "savageHutter", NULL};
     const int ep = get_choice(&d, "model", "earth_pressure", "isotropic", ep_names);
     const double phi = get_num(&d, "model", "phi", NAN, 0.0, 90.0);
@@ -371,7 +379,7 @@ int main(int argc, char **argv)
     c.bc_right = (gf_bc)get_choice(&d, "domain", "bc_right", "transmissive", bc_names);
 
     /* initial */
-    static const char *const shapes[] = {"dam", "box", "semicircle", "parabola", "sinusoid", "file", NULL};
+    static const char *const shapes[] = {"dam", "box", "semicircle", "parabola", "sinusoid", "file", "cap", NULL};
     init_data ini = {0};
     ini.shape = get_choice(&d, "initial", "shape", "dam", shapes);
     ini.x0 = get_num(&d, "initial", "x0", 0.5 * (c.x_min + c.x_max), -1e300, 1e300);
@@ -386,6 +394,7 @@ int main(int argc, char **argv)
     ini.r = get_num(&d, "initial", "radius", 1.0, 0, 1e300);
     ini.K = get_num(&d, "initial", "K", 1.0, 0, 1e300);
     ini.l = get_num(&d, "initial", "l", 4.0, 0, 1e300);
+    ini.depth = get_num(&d, "initial", "depth", 0.0, -1e300, 1e300);
     if (ini.shape == FILE_SHAPE) {
         const char *path = get_str(&d, "initial", "file", NULL);
         if (!path)

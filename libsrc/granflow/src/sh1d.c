@@ -18,6 +18,7 @@ void gf_sh1d_config_init(gf_sh1d_config *c)
     c->epsilon = 1.0;
     c->g = 1.0;
     c->chi = 1.0;
+    c->rho = 1.0;
     c->zeta = 0.0;
     c->topo = NULL;
     gf_earth_pressure_init(&c->earth_pressure, GF_EARTH_PRESSURE_ISOTROPIC, 0.0, 0.0);
@@ -60,6 +61,7 @@ static gf_status check_config(const gf_sh1d_config *c)
     if ((st = gf_check_range("epsilon (beta = epsilon K cos zeta)", c->epsilon, 1e-300, 1e300)) ||
         (st = gf_check_range("gravity scale g", c->g, 0.0, 1e300)) ||
         (st = gf_check_range("curvature factor chi", c->chi, -1e300, 1e300)) ||
+        (st = gf_check_range("flow density rho", c->rho, 1e-300, 1e300)) ||
         (st = gf_check_range("inclination zeta [rad]", c->zeta, -0.5 * GF_PI + 1e-12,
                              0.5 * GF_PI - 1e-12)) ||
         (st = gf_check_range("cfl", c->cfl, 0.0, 1.0)) ||
@@ -271,7 +273,7 @@ double gf_sh1d_friction(const gf_sh1d *s, double h, double u, double zeta, doubl
     if (h <= s->cfg.h_eps)
         return 0.0;
     const double n = gf_sh_normal_acceleration(s->cfg.g, zeta, s->cfg.chi * kappa, u);
-    const gf_friction_state st = {h, fabs(u), h * n, 1.0, s->cfg.g};
+    const gf_friction_state st = {h, fabs(u), s->cfg.rho * h * n, s->cfg.rho, s->cfg.g};
     gf_friction_result r;
     if (gf_friction_eval(&s->cfg.friction, &st, &r) != GF_SUCCESS)
         return NAN; /* caught by the finiteness check of the step */
@@ -283,7 +285,7 @@ double gf_sh1d_static_friction(const gf_sh1d *s, double h, double zeta)
     if (h <= s->cfg.h_eps)
         return 0.0;
     const double n = gf_sh_normal_acceleration(s->cfg.g, zeta, 0.0, 0.0);
-    const gf_friction_state st = {h, 0.0, h * n, 1.0, s->cfg.g};
+    const gf_friction_state st = {h, 0.0, s->cfg.rho * h * n, s->cfg.rho, s->cfg.g};
     gf_friction_result r;
     if (gf_friction_eval(&s->static_friction, &st, &r) != GF_SUCCESS)
         return NAN;

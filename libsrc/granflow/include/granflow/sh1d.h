@@ -50,6 +50,9 @@ typedef struct gf_sh1d_config {
     double epsilon;          /* beta = epsilon K cos(zeta) */
     double g;                /* gravity scale of the source: 1 or 9.81 */
     double chi;              /* curvature factor chi of rkdg eq. 2 (1) */
+    double rho;              /* flow density: p_b = rho h (g cos zeta + chi kappa u^2) for
+                                laws that use p_b itself (mu_i's inertial number, eq. 26);
+                                1 in the dimensionless form */
     double zeta;             /* constant inclination [rad] when topo is NULL */
     const gf_topography *topo; /* variable zeta(x), kappa(x); not owned; or NULL */
     gf_earth_pressure earth_pressure;
