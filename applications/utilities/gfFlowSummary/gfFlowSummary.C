@@ -3,9 +3,9 @@
 
 Description
     For every selected time: volume (mass/rho) sum(h S), max thickness, max
-    speed, mass-weighted mean speed sum(h |Us| S)/sum(h S), and the runout — the furthest face centre, projected on a
-    direction, among faces with h >= threshold (default 0.01 m, the paper's
-    level curve) — appended as a row to postProcessing/gfFlowSummary.dat.
+    speed, mass-weighted mean speed sum(h |Us| S)/sum(h S), and the runout — the furthest point, projected on a
+    direction, of the h = threshold level curve (default 0.01 m, the paper's),
+    interpolated linearly between face centres across edges — appended as a row to postProcessing/gfFlowSummary.dat.
     With -csv, also writes postProcessing/profiles/<time>.csv with every face:
     x,y,z,h,speed,Ux,Uy,Uz[,pb].
 
@@ -67,12 +67,32 @@ int main(int argc, char *argv[])
         }
         const vectorField& C = aMesh.areaCentres().primitiveField();
         const scalarField speed(mag(Us.primitiveField()));
+        // runout: the furthest point of the h = threshold level curve along
+        // dir, interpolated linearly between the centres of a face above the
+        // threshold and its edge neighbour below it (boundary faces above it
+        // count with their centre)
         scalar runout = -GREAT;
-        forAll(h, i)
+        const labelUList& own = aMesh.edgeOwner();
+        const labelUList& nei = aMesh.edgeNeighbour();
+        forAll(nei, edgei)
         {
-            if (h[i] >= threshold)
+            const label a = own[edgei], b = nei[edgei];
+            const scalar ha = h[a], hb = h[b];
+            if ((ha >= threshold) != (hb >= threshold))
             {
-                runout = max(runout, C[i] & dir);
+                const scalar w = (threshold - ha)/(hb - ha);
+                runout = max(runout, ((1 - w)*C[a] + w*C[b]) & dir);
+            }
+        }
+        forAll(h.boundaryField(), patchi)
+        {
+            const labelUList& fc = aMesh.boundary()[patchi].edgeFaces();
+            forAll(fc, i)
+            {
+                if (h[fc[i]] >= threshold)
+                {
+                    runout = max(runout, C[fc[i]] & dir);
+                }
             }
         }
         reduce(runout, maxOp<scalar>());
