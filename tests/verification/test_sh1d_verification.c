@@ -40,6 +40,30 @@ static void coulomb(gf_sh1d_config *c, double delta)
     gf_friction_set(&c->friction, "u0", 0.0);
 }
 
+/* the scheme of a kinetic solver or the degree of an RKDG one */
+static void set_variant(gf_sh1d_config *c, const gf_sh1d_type *t, int variant)
+{
+    if (t == gf_sh1d_kinetic)
+        c->scheme = variant;
+    else
+        c->degree = variant;
+}
+
+/* kinetic paper, section 4: epsilon = 0.4, dx = 0.05 on [0, 10], dt = 0.001,
+ * flat bed, Coulomb friction delta = pi/10, walls */
+static void kinetic_paper_config(gf_sh1d_config *c, const gf_sh1d_type *t, int variant)
+{
+    gf_sh1d_config_init(c);
+    c->n_cells = 200;
+    c->x_min = 0;
+    c->x_max = 10;
+    c->epsilon = 0.4;
+    c->bc_left = c->bc_right = GF_BC_WALL;
+    c->dt_fixed = 0.001;
+    coulomb(c, PI / 10);
+    set_variant(c, t, variant);
+}
+
 /* ---- (a) smooth problem ------------------------------------------------ */
 /* Periodic [0, 1], 35 deg slope, Coulomb friction tan 30 deg, epsilon = 1,
  * isotropic K; h = 1 + 0.2 sin 2 pi x, u = 1 + 0.1 cos 2 pi x > 0 (so sgn u
@@ -116,10 +140,7 @@ static double riemann_error(const gf_sh1d_type *t, int variant, size_t n, const 
     c.x_min = 0;
     c.x_max = 10;
     c.epsilon = 0.4;
-    if (t == gf_sh1d_kinetic)
-        c.scheme = variant;
-    else
-        c.degree = variant;
+    set_variant(&c, t, variant);
     rp_data r = {1.0, 0.5, 5.0};
     gf_sh1d *s = make(t, &c, rp_init, &r);
     advance(s, 5.0);
@@ -167,18 +188,7 @@ static void pile_init(double x, void *ctx, double *h, double *u)
 static void pile_stays(const gf_sh1d_type *t, int variant, double fraction, const char *name)
 {
     gf_sh1d_config c;
-    gf_sh1d_config_init(&c);
-    c.n_cells = 200;
-    c.x_min = 0;
-    c.x_max = 10;
-    c.epsilon = 0.4;
-    c.bc_left = c.bc_right = GF_BC_WALL;
-    c.dt_fixed = 0.001;
-    coulomb(&c, PI / 10);
-    if (t == gf_sh1d_kinetic)
-        c.scheme = variant;
-    else
-        c.degree = variant;
+    kinetic_paper_config(&c, t, variant);
     double slope = fraction * tan(PI / 10) / 0.4;
     gf_sh1d *s = make(t, &c, pile_init, &slope);
     double h0[200], u0[200], h[200], u[200];
@@ -230,18 +240,7 @@ static void silo_starts_and_stops(void **state)
     };
     for (size_t j = 0; j < sizeof cases / sizeof cases[0]; ++j) {
         gf_sh1d_config c;
-        gf_sh1d_config_init(&c);
-        c.n_cells = 200;
-        c.x_min = 0;
-        c.x_max = 10;
-        c.epsilon = 0.4;
-        c.bc_left = c.bc_right = GF_BC_WALL;
-        c.dt_fixed = 0.001;
-        coulomb(&c, PI / 10);
-        if (cases[j].t == gf_sh1d_kinetic)
-            c.scheme = cases[j].v;
-        else
-            c.degree = cases[j].v;
+        kinetic_paper_config(&c, cases[j].t, cases[j].v);
         gf_sh1d *s = make(cases[j].t, &c, silo_init, NULL);
         const double m0 = gf_sh1d_mass(s);
         double umax_early = 0.0, t_rest = -1.0;
@@ -304,10 +303,7 @@ static void depth_nonnegative_with_dry_fronts(void **state)
         c.x_max = 10;
         c.epsilon = 9.81;
         c.g = 9.81;
-        if (cases[j].t == gf_sh1d_kinetic)
-            c.scheme = cases[j].v;
-        else
-            c.degree = cases[j].v;
+        set_variant(&c, cases[j].t, cases[j].v);
         gf_sh1d *s = make(cases[j].t, &c, dry_init, NULL);
         double hmin = HUGE_VAL;
         while (gf_sh1d_time(s) < 0.5 - 1e-14) {

@@ -53,7 +53,8 @@ static void kinetic_free(gf_sh1d *s)
     kinetic *k = s->impl;
     if (!k)
         return;
-    free(k->h);
+    free(k->h);    /* the block of all double arrays */
+    free(k->slow); /* the block of both flag arrays */
     free(k);
     s->impl = NULL;
 }
@@ -88,15 +89,6 @@ static gf_status kinetic_init(gf_sh1d *s)
     s->impl = k;
     s->cfl = s->cfg.cfl > 0.0 ? s->cfg.cfl : 0.9;
     return GF_SUCCESS;
-}
-
-/* Free the flag block too: it was allocated separately. */
-static void kinetic_free_all(gf_sh1d *s)
-{
-    kinetic *k = s->impl;
-    if (k)
-        free(k->slow);
-    kinetic_free(s);
 }
 
 static void fill_ghosts(const gf_sh1d *s, double *h, double *q)
@@ -284,7 +276,7 @@ static double kinetic_min_depth(const gf_sh1d *s)
 }
 
 static const gf_sh1d_type kinetic_type = {
-    "kinetic",     kinetic_init,  kinetic_free_all, kinetic_set_initial, kinetic_max_dt,
+    "kinetic",     kinetic_init,  kinetic_free, kinetic_set_initial, kinetic_max_dt,
     kinetic_step,  kinetic_means, kinetic_eval,     kinetic_min_depth,
 };
 const gf_sh1d_type *const gf_sh1d_kinetic = &kinetic_type;

@@ -104,11 +104,17 @@ gf_status gf_sh1d_alloc(const gf_sh1d_type *type, const gf_sh1d_config *cfg, gf_
     s->cfg = *cfg;
     s->n = cfg->n_cells;
     s->dx = (cfg->x_max - cfg->x_min) / (double)cfg->n_cells;
+    s->scratch = malloc(2 * s->n * sizeof *s->scratch);
+    if (!s->scratch) {
+        free(s);
+        return gf_fail(GF_ENOMEM, "gf_sh1d_alloc: out of memory");
+    }
     s->static_friction = cfg->friction;
     double u0;
     if (gf_friction_get(&cfg->friction, "u0", &u0) == GF_SUCCESS)
         gf_friction_set(&s->static_friction, "u0", 0.0);
     if ((st = type->init(s))) {
+        free(s->scratch);
         free(s);
         return st;
     }
@@ -121,6 +127,7 @@ void gf_sh1d_free(gf_sh1d *s)
     if (!s)
         return;
     s->type->free(s);
+    free(s->scratch);
     free(s);
 }
 
@@ -135,21 +142,14 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
 
 static gf_status check_state(const gf_sh1d *s)
 {
-    double *h = malloc(2 * s->n * sizeof *h);
-    if (!h)
-        return gf_fail(GF_ENOMEM, "out of memory");
-    double *q = h + s->n;
+    double *h = s->scratch, *q = s->scratch + s->n;
     s->type->means(s, h, q);
-    gf_status st = GF_SUCCESS;
     for (size_t i = 0; i < s->n; ++i)
-        if (!isfinite(h[i]) || !isfinite(q[i])) {
-            st = gf_fail(GF_ENONFINITE, "%s: solution not finite in cell %zu (x = %g) at t = %g "
-                                        "after %zu steps",
-                         s->type->name, i, gf_sh1d_cell_centre(s, i), s->t, s->steps);
-            break;
-        }
-    free(h);
-    return st;
+        if (!isfinite(h[i]) || !isfinite(q[i]))
+            return gf_fail(GF_ENONFINITE, "%s: solution not finite in cell %zu (x = %g) at t = %g "
+                                          "after %zu steps",
+                           s->type->name, i, gf_sh1d_cell_centre(s, i), s->t, s->steps);
+    return GF_SUCCESS;
 }
 
 gf_status gf_sh1d_step(gf_sh1d *s, double dt_max)
@@ -226,13 +226,10 @@ gf_status gf_sh1d_eval(const gf_sh1d *s, double x, double *h, double *u)
 
 double gf_sh1d_mass(const gf_sh1d *s)
 {
-    double *h = malloc(2 * s->n * sizeof *h), m = 0.0;
-    if (!h)
-        return NAN;
+    double *h = s->scratch, m = 0.0;
     s->type->means(s, h, h + s->n);
     for (size_t i = 0; i < s->n; ++i)
         m += h[i];
-    free(h);
     return m * s->dx;
 }
 
@@ -240,13 +237,10 @@ double gf_sh1d_min_depth(const gf_sh1d *s) { return s->type->min_depth(s); }
 
 double gf_sh1d_max_speed(const gf_sh1d *s)
 {
-    double *h = malloc(2 * s->n * sizeof *h), m = 0.0;
-    if (!h)
-        return NAN;
+    double *h = s->scratch, m = 0.0;
     gf_sh1d_means(s, h, h + s->n);
     for (size_t i = 0; i < s->n; ++i)
         m = fmax(m, fabs(h[s->n + i]));
-    free(h);
     return m;
 }
 
@@ -312,9 +306,7 @@ double gf_sh1d_l1_difference(const gf_sh1d *a, const gf_sh1d *b)
 
 double gf_sh1d_l1_error_riemann(const gf_sh1d *s, const gf_riemann *exact, double t)
 {
-    double *h = malloc(2 * s->n * sizeof *h), e = 0.0;
-    if (!h)
-        return NAN;
+    double *h = s->scratch, e = 0.0;
     gf_sh1d_means(s, h, h + s->n);
     for (size_t i = 0; i < s->n; ++i) {
         double mean = 0.0;
@@ -326,6 +318,5 @@ double gf_sh1d_l1_error_riemann(const gf_sh1d *s, const gf_riemann *exact, doubl
         }
         e += fabs(h[i] - mean) * s->dx;
     }
-    free(h);
     return e;
 }
