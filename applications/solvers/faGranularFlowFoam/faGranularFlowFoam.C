@@ -51,6 +51,7 @@ int main(int argc, char *argv[])
     Info<< "Initial mass (volume) " << mass0 << " m3" << nl << endl;
     cpuTime timer;
     scalar tPressure = 0, tMomentum = 0, tContinuity = 0;
+    scalar tSolveUs = 0, tSolveH = 0;   // linear solvers, inside momentum/continuity
     label nIterTotal = 0;
 
     while (runTime.run())
@@ -119,7 +120,9 @@ int main(int argc, char *argv[])
             relaxConsistent(UsEqn);
             #include "dryFaces.H"
             const vectorField UsPrev(Us.primitiveField());
+            const scalar tls = timer.elapsedCpuTime();
             UsEqn.solve();
+            tSolveUs += timer.elapsedCpuTime() - tls;
             Us -= n*(n & Us);   // keep Us tangential (eq. 28)
             Us.correctBoundaryConditions();
             // Us convergence: relative L1 change over the outer iteration
@@ -138,7 +141,9 @@ int main(int argc, char *argv[])
               + fam::div(phis, h)
             );
             relaxConsistent(hEqn);
+            const scalar tlh = timer.elapsedCpuTime();
             const SolverPerformance<scalar> spH = hEqn.solve();
+            tSolveH += timer.elapsedCpuTime() - tlh;
             resH = spH.initialResidual();
             phi2s = hEqn.flux();
             tContinuity += timer.elapsedCpuTime() - t0;
@@ -204,7 +209,8 @@ int main(int argc, char *argv[])
     }
 
     Info<< nl << "CPU seconds: pressure " << tPressure << ", momentum " << tMomentum
-        << ", continuity " << tContinuity << "; outer iterations " << nIterTotal
+        << " (linear solver " << tSolveUs << "), continuity " << tContinuity
+        << " (linear solver " << tSolveH << "); outer iterations " << nIterTotal
         << "; total " << runTime.elapsedCpuTime() << nl << "End" << nl << endl;
     return 0;
 }
