@@ -18,7 +18,7 @@ Usage
 #include "faCFD.H"
 #include "timeSelector.H"
 #include "uniformDimensionedFields.H"
-#include "basalFriction.H"
+#include "granularModel.H"
 
 int main(int argc, char *argv[])
 {
@@ -46,26 +46,12 @@ int main(int argc, char *argv[])
             IOobject::NO_WRITE
         )
     );
-    const granflow::basalFriction friction(granularProperties);
-    const scalar rho = granularProperties.get<scalar>("rho");
-    if (!(rho > 0))
-    {
-        FatalIOErrorInFunction(granularProperties)
-            << "Invalid entry rho " << rho << ": the flow density must be > 0 kg/m3"
-            << exit(FatalIOError);
-    }
+    // the same reading and checks of rho and the friction law as the solver
+    const granflow::granularModel model(granularProperties);
+    const granflow::basalFriction& friction = model.friction();
+    const scalar rho = model.rho();
 
-    const uniformDimensionedVectorField g
-    (
-        IOobject
-        (
-            "g",
-            runTime.constant(),
-            mesh,
-            IOobject::MUST_READ,
-            IOobject::NO_WRITE
-        )
-    );
+    #include "readGravitationalAcceleration.H"
     Info<< "Friction law " << friction.lawName() << ", rho = " << rho
         << ", g = " << g.value() << nl << endl;
 
