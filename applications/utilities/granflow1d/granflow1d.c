@@ -25,7 +25,8 @@
  *   [solver]      method (rkdg | kinetic), degree (2), scheme (3), cfl,
  *                 dt, limiter (on | off), gamma (0.5), tvb_m (0), h_eps, h_semi
  *   [output]      times (list), dir (.), name (case file stem), plot (no | yes),
- *                 exact (no | riemann: exact columns for a dam), front_h (1e-3),
+ *                 exact (no | riemann: exact columns for a dam | dressler: Dressler's
+ *                 solution for a dam on a dry bed with chezy friction), front_h (1e-3),
  *                 every (0: summary line every this much time)
  *
  * Output: NAME_t<time>.csv with columns x,h,u[,X,Z,Xs,Zs][,h_exact,u_exact]
@@ -452,7 +453,7 @@ int main(int argc, char **argv)
     }
     const char *name = get_str(&d, "output", "name", stem);
     const int plot = get_choice(&d, "output", "plot", "no", (const char *const[]){"no", "yes", NULL});
-    const int exact = get_choice(&d, "output", "exact", "no", (const char *const[]){"no", "riemann", NULL});
+    const int exact = get_choice(&d, "output", "exact", "no", (const char *const[]){"no", "riemann", "dressler", NULL});
     const double front_h = get_num(&d, "output", "front_h", 1e-3, 0.0, 1e300);
     const double every = get_num(&d, "output", "every", 0.0, 0.0, 1e300);
 
@@ -461,7 +462,20 @@ int main(int argc, char **argv)
             die("unknown key [%s] %s (see the schema in README.md)", d.e[i].section, d.e[i].key);
 
     gf_riemann rp;
-    if (exact) {
+    gf_dressler dp;
+    double chezy = 0.0;
+    if (exact == 2) {
+        if (ini.shape != DAM || tt != 0 || c.zeta != 0.0 || strcmp(law, "chezy") || ini.hr != 0.0 ||
+            ini.ul != 0.0 || c.earth_pressure.k_act != 1.0 || c.earth_pressure.k_pass != 1.0 ||
+            c.epsilon != c.g)
+            die("[output] exact = dressler needs shape = dam with h_right = 0 and u_left = 0 on "
+                "flat ground, friction = chezy, isotropic earth pressure and epsilon = g");
+        lib_check(gf_friction_get(&c.friction, "C", &chezy), "[friction] C");
+        lib_check(gf_dressler_init(&dp, c.g, ini.hl, chezy, ini.x0), "exact solution");
+        for (int k = 0; k < nt; ++k) /* fail before the run, not after */
+            if (times[k] > 0.0 && gf_dressler_at(&dp, times[k]))
+                die("[output] exact = dressler at t = %g: %s", times[k], gf_error_detail());
+    } else if (exact) {
         if (ini.shape != DAM || tt != 0 || c.zeta != 0.0 || strcmp(law, "none"))
             die("[output] exact = riemann needs shape = dam on flat ground without friction");
         const double beta = c.epsilon * c.earth_pressure.k_act; /* K constant: isotropic or phi = delta */
@@ -523,6 +537,8 @@ int main(int argc, char **argv)
         FILE *f = fopen(path, "w");
         if (!f)
             die("cannot write '%s': %s", path, strerror(errno));
+        if (exact == 2 && times[k] > 0.0 && gf_dressler_at(&dp, times[k]))
+            die("[output] exact = dressler at t = %g: %s", times[k], gf_error_detail());
         fprintf(f, "x,h,u%s%s\n", topo ? ",X,Z,Xs,Zs" : "", exact ? ",h_exact,u_exact" : "");
         for (size_t i = 0; i < n; ++i) {
             const double x = gf_sh1d_cell_centre(s, i);
@@ -535,7 +551,12 @@ int main(int argc, char **argv)
             }
             if (exact) {
                 double he, ue;
-                gf_riemann_sample(&rp, x, times[k], &he, &ue);
+                if (exact == 2 && times[k] > 0.0)
+                    gf_dressler_sample(&dp, x, &he, &ue);
+                else if (exact == 2)
+                    gf_dressler_outer(&dp, x, 0.0, &he, &ue); /* the initial dam */
+                else
+                    gf_riemann_sample(&rp, x, times[k], &he, &ue);
                 fprintf(f, ",%.12g,%.12g", he, ue);
             }
             fprintf(f, "\n");

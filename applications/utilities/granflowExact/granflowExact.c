@@ -2,11 +2,15 @@
  * granflowExact — libgranflow's exact solutions at given positions.
  *
  *   granflowExact riemann BETA H_L U_L H_R U_R X0 T  < positions
+ *   granflowExact dressler G H_L C X0 T                < positions
  *
  * Reads one x per line (or the first column of a CSV with a header) on
  * standard input and prints "x,h_exact,u_exact".  BETA = g for the
  * dimensional dam breaks (Stoker: H_R > 0, Ritter: H_R = 0), epsilon K cos
- * zeta for the dimensionless Savage–Hutter Riemann problem.
+ * zeta for the dimensionless Savage–Hutter Riemann problem.  dressler:
+ * Dressler's dry dam break with Chezy coefficient C (first-order expansion
+ * with a friction-dominated tip, exact.h); its tip and front positions are
+ * printed to standard error.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,20 +29,42 @@ static double num(const char *s, const char *what)
     return v;
 }
 
+static void usage(void)
+{
+    fprintf(stderr, "usage: granflowExact riemann BETA H_L U_L H_R U_R X0 T < positions\n"
+                    "       granflowExact dressler G H_L C X0 T < positions\n");
+    exit(2);
+}
+
 int main(int argc, char **argv)
 {
-    if (argc != 9 || strcmp(argv[1], "riemann") != 0) {
-        fprintf(stderr, "usage: granflowExact riemann BETA H_L U_L H_R U_R X0 T < positions\n");
-        return 2;
-    }
-    static const char *names[] = {"BETA", "H_L", "U_L", "H_R", "U_R", "X0", "T"};
+    static const char *rnames[] = {"BETA", "H_L", "U_L", "H_R", "U_R", "X0", "T"};
+    static const char *dnames[] = {"G", "H_L", "C", "X0", "T"};
+    const int riemann = argc == 9 && strcmp(argv[1], "riemann") == 0;
+    const int dressler = argc == 7 && strcmp(argv[1], "dressler") == 0;
+    if (!riemann && !dressler)
+        usage();
     double a[7];
-    for (int i = 0; i < 7; ++i)
-        a[i] = num(argv[i + 2], names[i]);
+    for (int i = 0; i < argc - 2; ++i)
+        a[i] = num(argv[i + 2], riemann ? rnames[i] : dnames[i]);
     gf_riemann rp;
-    if (gf_riemann_solve(&rp, a[0], a[1], a[2], a[3], a[4], a[5]) != GF_SUCCESS) {
-        fprintf(stderr, "granflowExact: %s\n", gf_error_detail());
-        return 2;
+    gf_dressler dp;
+    double t;
+    if (riemann) {
+        t = a[6];
+        if (gf_riemann_solve(&rp, a[0], a[1], a[2], a[3], a[4], a[5]) != GF_SUCCESS) {
+            fprintf(stderr, "granflowExact: %s\n", gf_error_detail());
+            return 2;
+        }
+    } else {
+        t = a[4];
+        if (gf_dressler_init(&dp, a[0], a[1], a[2], a[3]) != GF_SUCCESS ||
+            gf_dressler_at(&dp, t) != GF_SUCCESS) {
+            fprintf(stderr, "granflowExact: %s\n", gf_error_detail());
+            return 2;
+        }
+        fprintf(stderr, "Dressler t = %g: tip x = %.6g (u = %.6g m/s, h = %.6g m), front x = %.6g\n",
+                t, dp.x_tip, dp.u_tip, dp.h_tip, dp.x_front);
     }
     char line[4096];
     printf("x,h_exact,u_exact\n");
@@ -48,7 +74,10 @@ int main(int argc, char **argv)
         if (end == line)
             continue; /* header or blank */
         double h, u;
-        gf_riemann_sample(&rp, x, a[6], &h, &u);
+        if (riemann)
+            gf_riemann_sample(&rp, x, t, &h, &u);
+        else
+            gf_dressler_sample(&dp, x, &h, &u);
         printf("%.12g,%.12g,%.12g\n", x, h, u);
     }
     return 0;

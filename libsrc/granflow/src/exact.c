@@ -2,6 +2,7 @@
 #include "internal.h"
 
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
 #include <gsl/gsl_roots.h>
 #include <math.h>
 
@@ -172,5 +173,181 @@ void gf_riemann_sample(const gf_riemann *rp, double x, double t, double *h, doub
                 *u = (rp->ur - 2.0 * cr + 2.0 * S) / 3.0;
             }
         }
+    }
+}
+
+/* ---- Dressler's dam break with Chezy friction (see exact.h) ------------- */
+
+
+static double dressler_a1(double xi)
+{
+    const double s = 2.0 - xi;
+    return 6.0 / (5.0 * s) - 2.0 / 3.0 + 4.0 * sqrt(3.0) / 135.0 * s * sqrt(s);
+}
+
+static double dressler_a2(double xi)
+{
+    const double s = 2.0 - xi;
+    return 12.0 / s - 8.0 / 3.0 + 8.0 * sqrt(3.0) / 189.0 * s * sqrt(s) - 108.0 / (7.0 * s * s);
+}
+
+/* d a2 / d xi */
+static double dressler_da2(double xi)
+{
+    const double s = 2.0 - xi;
+    return 12.0 / (s * s) - 4.0 * sqrt(3.0) / 63.0 * sqrt(s) - 216.0 / (7.0 * s * s * s);
+}
+
+gf_status gf_dressler_init(gf_dressler *d, double g, double hl, double chezy, double x0)
+{
+    gf_status st;
+    if (!d)
+        return gf_fail(GF_EINVAL, "gf_dressler_init: null pointer");
+    if ((st = gf_check_range("Dressler dam break g", g, 1e-300, HUGE_VAL)) ||
+        (st = gf_check_range("Dressler dam break reservoir depth h_l", hl, 1e-300, HUGE_VAL)) ||
+        (st = gf_check_range("Dressler dam break Chezy coefficient C", chezy, 1e-300, HUGE_VAL)) ||
+        (st = gf_check_range("Dressler dam break position x0", x0, -HUGE_VAL, HUGE_VAL)))
+        return st;
+    *d = (gf_dressler){.g = g, .hl = hl, .chezy = chezy, .x0 = x0};
+    return GF_SUCCESS;
+}
+
+/* radicand c = sqrt(g h) of the outer depth, u of the outer region */
+static void dressler_outer_cu(const gf_dressler *d, double X, double t, double *c, double *u)
+{
+    const double c0 = sqrt(d->g * d->hl), xi = X / (c0 * t);
+    const double f = d->g * d->g * t / (d->chezy * d->chezy);
+    *c = 2.0 * c0 / 3.0 - X / (3.0 * t) + f * dressler_a1(xi);
+    *u = 2.0 * c0 / 3.0 + 2.0 * X / (3.0 * t) + f * dressler_a2(xi);
+}
+
+void gf_dressler_outer(const gf_dressler *d, double x, double t, double *h, double *u)
+{
+    const double X = x - d->x0, c0 = sqrt(d->g * d->hl);
+    if (t <= 0.0 || X <= -c0 * t) {
+        *h = X <= 0.0 ? d->hl : 0.0;
+        *u = 0.0;
+        return;
+    }
+    double c;
+    dressler_outer_cu(d, X, t, &c, u);
+    *h = c > 0.0 ? c * c / d->g : 0.0;
+}
+
+typedef struct {
+    const gf_dressler *d;
+    double t;
+} dressler_at_t;
+
+static double dressler_dudxi(double xi, void *p)
+{
+    const dressler_at_t *a = p;
+    const double c0 = sqrt(a->d->g * a->d->hl);
+    const double f = a->d->g * a->d->g * a->t / (a->d->chezy * a->d->chezy);
+    return 2.0 * c0 / 3.0 + f * dressler_da2(xi); /* c0 t du/dX */
+}
+
+static double dressler_h_of_X(double X, void *p)
+{
+    const dressler_at_t *a = p;
+    double c, u;
+    dressler_outer_cu(a->d, X, a->t, &c, &u);
+    return c * c / a->d->g;
+}
+
+gf_status gf_dressler_at(gf_dressler *d, double t)
+{
+    if (!d)
+        return gf_fail(GF_EINVAL, "gf_dressler_at: null pointer");
+    gf_status st = gf_check_range("Dressler dam break time t", t, 1e-300, HUGE_VAL);
+    if (st)
+        return st;
+    const double c0 = sqrt(d->g * d->hl);
+    dressler_at_t a = {d, t};
+    /* du/dxi > 0 at xi = -1 (a2'(-1) = 0) and -> -inf at xi -> 2: the tip is
+     * the first sign change, found on a grid and refined by Brent. */
+    double lo = -1.0, hi = -1.0;
+    const int n = 3000;
+    for (int i = 1; i <= n; ++i) {
+        hi = -1.0 + 3.0 * i / (n + 1.0);
+        if (dressler_dudxi(hi, &a) <= 0.0)
+            break;
+        lo = hi;
+    }
+    gsl_function F = {dressler_dudxi, &a};
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!s)
+        return gf_fail(GF_ENOMEM, "Dressler dam break: out of memory");
+    gsl_root_fsolver_set(s, &F, lo, hi);
+    int status = GSL_CONTINUE;
+    for (int it = 0; it < 200 && status == GSL_CONTINUE; ++it) {
+        gsl_root_fsolver_iterate(s);
+        status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s),
+                                        1e-15, 0.0);
+    }
+    const double xi_tip = gsl_root_fsolver_root(s);
+    gsl_root_fsolver_free(s);
+    if (status != GSL_SUCCESS)
+        return gf_fail(GF_ENOCONV, "Dressler dam break: tip position did not converge");
+    const double X_tip = xi_tip * c0 * t;
+    double c, u;
+    dressler_outer_cu(d, X_tip, t, &c, &u);
+    /* the outer depth must stay positive up to the tip */
+    for (int i = 0; i <= 200; ++i) {
+        double ci, ui;
+        dressler_outer_cu(d, -c0 * t + (X_tip + c0 * t) * i / 200.0, t, &ci, &ui);
+        if (ci <= 0.0)
+            return gf_fail(GF_EDOM,
+                           "Dressler dam break: t = %g is outside the first-order expansion "
+                           "(g^2 t / C^2 = %g against sqrt(g h_l) = %g): negative depth",
+                           t, d->g * d->g * t / (d->chezy * d->chezy), c0);
+    }
+    /* volume of the outer region, -c0 t < X < X_tip */
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(200);
+    if (!w)
+        return gf_fail(GF_ENOMEM, "Dressler dam break: out of memory");
+    gsl_function H = {dressler_h_of_X, &a};
+    double vol, err;
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    status = gsl_integration_qag(&H, -c0 * t, X_tip, 0.0, 1e-13, 200, GSL_INTEG_GAUSS31, w, &vol,
+                                 &err);
+    gsl_set_error_handler(old);
+    gsl_integration_workspace_free(w);
+    if (status)
+        return gf_fail(GF_EGSL, "Dressler dam break: outer volume integral: %s",
+                       gsl_strerror(status));
+    /* the released volume h_l c0 t (the rarefaction's deficit left of x0) */
+    const double tip = d->hl * c0 * t - vol;
+    if (!(tip > 0.0))
+        return gf_fail(GF_EDOM,
+                       "Dressler dam break: t = %g is outside the first-order expansion: the "
+                       "outer region holds more than the released volume",
+                       t);
+    /* h = (u/C) sqrt(2 (X_f - X)): volume (2 sqrt2 / 3) (u/C) L^(3/2) */
+    const double L = pow(3.0 * tip * d->chezy / (2.0 * sqrt(2.0) * u), 2.0 / 3.0);
+    if (X_tip + L >= 2.0 * c0 * t)
+        return gf_fail(GF_EDOM,
+                       "Dressler dam break: t = %g is outside the first-order expansion "
+                       "(g^2 t / C^2 = %g against sqrt(g h_l) = %g): the front would run ahead "
+                       "of the frictionless (Ritter) front",
+                       t, d->g * d->g * t / (d->chezy * d->chezy), c0);
+    d->t = t;
+    d->x_tip = d->x0 + X_tip;
+    d->u_tip = u;
+    d->h_tip = c * c / d->g;
+    d->x_front = d->x_tip + L;
+    return GF_SUCCESS;
+}
+
+void gf_dressler_sample(const gf_dressler *d, double x, double *h, double *u)
+{
+    if (x < d->x_tip) {
+        gf_dressler_outer(d, x, d->t, h, u);
+    } else if (x < d->x_front) {
+        *u = d->u_tip;
+        *h = d->u_tip / d->chezy * sqrt(2.0 * (d->x_front - x));
+    } else {
+        *h = 0.0;
+        *u = 0.0;
     }
 }

@@ -42,6 +42,58 @@ gf_status gf_riemann_solve(gf_riemann *rp, double beta, double hl, double ul, do
 /* Exact h and u at (x, t), t > 0 (t = 0 gives the initial data). */
 void gf_riemann_sample(const gf_riemann *rp, double x, double t, double *h, double *u);
 
+/*
+ * Dressler's dam break on a dry bed with Chezy friction (finite-area paper,
+ * section 6.1.3, eq. 71; Dressler 1952, as collected by Delestre et al.
+ * 2013, SWASHES):
+ *
+ *     h_t + (hu)_x = 0,   u_t + u u_x + g h_x = -g u|u| / (C^2 h),
+ *
+ * h = h_l for x < x0, h = 0 for x > x0, u = 0 at t = 0.  With X = x - x0,
+ * c0 = sqrt(g h_l), xi = X / (c0 t) and f = g^2 t / C^2, Dressler's
+ * first-order expansion in the resistance (outer region, -1 < xi < xi_tip):
+ *
+ *     h = (2 c0/3 - X/(3t) + f a1(xi))^2 / g,
+ *     u =  2 c0/3 + 2X/(3t) + f a2(xi),
+ *     a1 = 6/(5(2-xi)) - 2/3 + 4 sqrt3/135 (2-xi)^(3/2),
+ *     a2 = 12/(2-xi) - 8/3 + 8 sqrt3/189 (2-xi)^(3/2) - 108/(7 (2-xi)^2).
+ *
+ * Both corrections vanish at xi = -1 (the still reservoir), and the
+ * residual of the equations is second order in 1/C^2 (tests/unit/
+ * test_exact.c checks both).  The expansion breaks down towards the front,
+ * where u(X) would fall again; following Whitham (1955) and Valiani et al.
+ * (2002) the tip region X_tip <= X <= X_front (X_tip: maximum of u) moves
+ * with the uniform velocity u_tip = u(X_tip).  Our closure of the tip: the
+ * momentum balance there is dominated by friction, g h_x = -g u_tip^2/(C^2 h),
+ * so h = (u_tip/C) sqrt(2 (X_front - X)); X_front follows from mass
+ * conservation (the tip holds the released volume h_l c0 t minus the volume
+ * of the outer region).  This closure is ours: the SWASHES implementation of
+ * the tip is not in the shared papers.  Valid while the reservoir is not
+ * reached by the reflection from a wall and while f is small against c0.
+ */
+typedef struct gf_dressler {
+    double g, hl, chezy, x0;
+    /* set by gf_dressler_at() for its time t: */
+    double t;
+    double x_tip, u_tip, h_tip; /* where the outer region ends, u and outer h there */
+    double x_front;             /* wet front (h = 0) */
+} gf_dressler;
+
+/* Parameters: g > 0, h_l > 0, Chezy C > 0, dam position x0. */
+gf_status gf_dressler_init(gf_dressler *d, double g, double hl, double chezy, double x0);
+
+/* Tip and front at time t > 0.  Fails (GF_EDOM) when the first-order
+ * expansion no longer describes a flow (friction too strong for that t):
+ * depth radicand negative before the tip, no volume left for the tip, or a
+ * front ahead of Ritter's frictionless front x0 + 2 sqrt(g h_l) t. */
+gf_status gf_dressler_at(gf_dressler *d, double t);
+
+/* h and u at x for the time of the last gf_dressler_at(). */
+void gf_dressler_sample(const gf_dressler *d, double x, double *h, double *u);
+
+/* Outer (first-order) expansion alone, at any (x, t > 0), for tests. */
+void gf_dressler_outer(const gf_dressler *d, double x, double t, double *h, double *u);
+
 /* beta of the dimensionless Savage–Hutter equations: epsilon K cos(zeta). */
 double gf_sh_beta(double epsilon, double k, double zeta);
 

@@ -1,0 +1,161 @@
+/* Exact and approximate solutions of libgranflow (exact.h).
+ * Dressler's dam break with Chezy friction (finite-area paper, section
+ * 6.1.3): the first-order expansion is checked against the equations
+ * themselves (its residual must fall like 1/C^4 when C grows, a wrong
+ * coefficient leaves a 1/C^2 residual), against Ritter as C -> infinity,
+ * for the still reservoir at xi = -1, for the velocity maximum at the tip,
+ * and for the released volume. */
+#include <math.h>
+#include <stdio.h>
+
+#include "../gf_test.h"
+#include "granflow/exact.h"
+
+static const double G = 9.81, HL = 0.5, X0 = 5.0;
+
+/* max over the outer region of |residual| of mass and momentum at time t */
+static void outer_residual(const gf_dressler *d, double t, double *rm, double *rq)
+{
+    const double c0 = sqrt(G * HL), e = 1e-5;
+    /* xi in [-0.95, 1]: inside the outer region for C >= 40 at t = 1 (tip at
+     * xi = 1.07 for C = 40, nearer 2 for larger C) */
+    const double xa = X0 - 0.95 * c0 * t, xb = X0 + c0 * t;
+    *rm = *rq = 0.0;
+    for (int i = 0; i <= 60; ++i) {
+        const double x = xa + (xb - xa) * i / 60.0;
+        double h, u, hxp, uxp, hxm, uxm, htp, utp, htm, utm;
+        gf_dressler_outer(d, x, t, &h, &u);
+        gf_dressler_outer(d, x + e, t, &hxp, &uxp);
+        gf_dressler_outer(d, x - e, t, &hxm, &uxm);
+        gf_dressler_outer(d, x, t + e, &htp, &utp);
+        gf_dressler_outer(d, x, t - e, &htm, &utm);
+        const double hx = (hxp - hxm) / (2 * e), ux = (uxp - uxm) / (2 * e);
+        const double ht = (htp - htm) / (2 * e), ut = (utp - utm) / (2 * e);
+        const double C = d->chezy;
+        *rm = fmax(*rm, fabs(ht + u * hx + h * ux));
+        *rq = fmax(*rq, fabs(ut + u * ux + G * hx + G * u * fabs(u) / (C * C * h)));
+    }
+}
+
+static void dressler_expansion_is_second_order_in_the_resistance(void **state)
+{
+    (void)state;
+    double rm[3], rq[3];
+    const double C[3] = {40, 80, 160};
+    for (int k = 0; k < 3; ++k) {
+        gf_dressler d;
+        assert_int_equal(gf_dressler_init(&d, G, HL, C[k], X0), GF_SUCCESS);
+        outer_residual(&d, 1.0, &rm[k], &rq[k]);
+        printf("  Dressler outer residual, C = %3.0f: mass %.3e, momentum %.3e\n", C[k], rm[k],
+               rq[k]);
+    }
+    /* first-order consistency: doubling C divides the residual by ~16
+     * (measured 16.6 / 16.2 for mass, 12.3 / 15.1 for momentum); a first-order error would give 4 */
+    for (int k = 0; k < 2; ++k) {
+        assert_true(rm[k] / rm[k + 1] > 10.0);
+        assert_true(rq[k] / rq[k + 1] > 10.0);
+    }
+    /* the frictionless parts cancel: C = 40 leaves a small residual */
+    assert_true(rm[0] < 5e-3 && rq[0] < 0.15);
+}
+
+static void dressler_tends_to_ritter_without_friction(void **state)
+{
+    (void)state;
+    gf_dressler d;
+    gf_riemann r;
+    assert_int_equal(gf_dressler_init(&d, G, HL, 1e7, X0), GF_SUCCESS);
+    assert_int_equal(gf_riemann_solve(&r, G, HL, 0, 0, 0, X0), GF_SUCCESS);
+    for (double x = 2.0; x < 8.0; x += 0.37) {
+        double h, u, hr, ur;
+        gf_dressler_outer(&d, x, 1.0, &h, &u);
+        gf_riemann_sample(&r, x, 1.0, &hr, &ur);
+        if (x - X0 < 1.9 * sqrt(G * HL)) { /* a1, a2 grow like (2-xi)^-2 at the front */
+            assert_close(h, hr, 1e-9);
+            assert_close(u, ur, 1e-9);
+        }
+    }
+}
+
+static void dressler_reservoir_still_and_tip_at_the_velocity_maximum(void **state)
+{
+    (void)state;
+    gf_dressler d;
+    assert_int_equal(gf_dressler_init(&d, G, HL, 40, X0), GF_SUCCESS);
+    assert_int_equal(gf_dressler_at(&d, 1.0), GF_SUCCESS);
+    const double c0 = sqrt(G * HL);
+    double h, u;
+    /* both corrections vanish at xi = -1: continuous with the still reservoir */
+    gf_dressler_sample(&d, X0 - c0 * (1 - 1e-9), &h, &u);
+    assert_close(h, HL, 1e-8);
+    assert_close(u, 0.0, 1e-8);
+    gf_dressler_sample(&d, X0 - c0 - 0.1, &h, &u);
+    assert_close(h, HL, 0);
+    assert_close(u, 0.0, 0);
+    /* u of the outer region is largest at the tip */
+    for (double dx = 1e-3; dx < 0.3; dx *= 2) {
+        double hl, ul, hr, ur;
+        gf_dressler_outer(&d, d.x_tip - dx, 1.0, &hl, &ul);
+        gf_dressler_outer(&d, d.x_tip + dx, 1.0, &hr, &ur);
+        assert_true(ul < d.u_tip && ur < d.u_tip);
+    }
+    /* the tip moves at u_tip behind Ritter's front, ahead of the tip start */
+    printf("  Dressler C = 40, t = 1: tip x = %.4f (u %.4f, h %.4f), front x = %.4f "
+           "(Ritter %.4f)\n", d.x_tip, d.u_tip, d.h_tip, d.x_front, X0 + 2 * c0);
+    assert_true(d.x_tip < d.x_front && d.x_front < X0 + 2 * c0);
+    gf_dressler_sample(&d, d.x_front + 1e-12, &h, &u);
+    assert_close(h, 0.0, 0);
+    gf_dressler_sample(&d, 0.5 * (d.x_tip + d.x_front), &h, &u);
+    assert_close(u, d.u_tip, 0);
+}
+
+static void dressler_conserves_the_released_volume(void **state)
+{
+    (void)state;
+    const double c0 = sqrt(G * HL);
+    for (double t = 0.25; t <= 2.0; t *= 2) {
+        gf_dressler d;
+        assert_int_equal(gf_dressler_init(&d, G, HL, 40, X0), GF_SUCCESS);
+        assert_int_equal(gf_dressler_at(&d, t), GF_SUCCESS);
+        /* midpoint rule on 2e5 cells, exact sqrt integral near the front
+         * makes ~1e-8; the tip region is integrated in closed form */
+        const double a = X0 - c0 * t, b = d.x_tip;
+        const int n = 200000;
+        double v = 0.0;
+        for (int i = 0; i < n; ++i) {
+            double h, u;
+            gf_dressler_sample(&d, a + (b - a) * (i + 0.5) / n, &h, &u);
+            v += h * (b - a) / n;
+        }
+        const double L = d.x_front - d.x_tip;
+        v += 2.0 * sqrt(2.0) / 3.0 * d.u_tip / d.chezy * L * sqrt(L);
+        assert_close(v, HL * (X0 - a), 1e-9);
+    }
+}
+
+static void dressler_rejects_bad_input(void **state)
+{
+    (void)state;
+    gf_dressler d;
+    assert_int_equal(gf_dressler_init(&d, G, HL, 0.0, X0), GF_EDOM);
+    assert_int_equal(gf_dressler_init(&d, G, -1.0, 40.0, X0), GF_EDOM);
+    assert_int_equal(gf_dressler_init(&d, G, HL, NAN, X0), GF_ENONFINITE);
+    assert_int_equal(gf_dressler_init(&d, G, HL, 40.0, X0), GF_SUCCESS);
+    assert_int_equal(gf_dressler_at(&d, 0.0), GF_EDOM);
+    /* strong friction for a long time leaves the first-order expansion */
+    assert_int_equal(gf_dressler_init(&d, G, HL, 3.0, X0), GF_SUCCESS);
+    assert_int_equal(gf_dressler_at(&d, 8.0), GF_EDOM);
+    printf("  expected message: %s\n", gf_error_detail());
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(dressler_expansion_is_second_order_in_the_resistance),
+        cmocka_unit_test(dressler_tends_to_ritter_without_friction),
+        cmocka_unit_test(dressler_reservoir_still_and_tip_at_the_velocity_maximum),
+        cmocka_unit_test(dressler_conserves_the_released_volume),
+        cmocka_unit_test(dressler_rejects_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
