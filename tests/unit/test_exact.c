@@ -142,6 +142,16 @@ static void dressler_rejects_bad_input(void **state)
     assert_int_equal(gf_dressler_init(&d, G, HL, NAN, X0), GF_ENONFINITE);
     assert_int_equal(gf_dressler_init(&d, G, HL, 40.0, X0), GF_SUCCESS);
     assert_int_equal(gf_dressler_at(&d, 0.0), GF_EDOM);
+    /* nearly frictionless: the tip approaches Ritter's front or is refused */
+    assert_int_equal(gf_dressler_init(&d, G, HL, 1e4, X0), GF_SUCCESS);
+    assert_int_equal(gf_dressler_at(&d, 1.0), GF_SUCCESS);
+    assert_true(d.x_front < X0 + 2 * sqrt(G * HL) && d.x_tip > X0 + 1.9 * sqrt(G * HL));
+    assert_int_equal(gf_dressler_init(&d, G, HL, 1e9, X0), GF_SUCCESS);
+    assert_int_equal(gf_dressler_at(&d, 1.0), GF_SUCCESS);
+    assert_close(d.x_front, X0 + 2 * sqrt(G * HL), 1e-3);
+    assert_int_equal(gf_dressler_init(&d, G, HL, 1e20, X0), GF_SUCCESS);
+    assert_int_equal(gf_dressler_at(&d, 1.0), GF_EDOM);
+    printf("  expected message: %s\n", gf_error_detail());
     /* strong friction for a long time leaves the first-order expansion */
     assert_int_equal(gf_dressler_init(&d, G, HL, 3.0, X0), GF_SUCCESS);
     assert_int_equal(gf_dressler_at(&d, 8.0), GF_EDOM);

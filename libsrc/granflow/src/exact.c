@@ -274,6 +274,17 @@ gf_status gf_dressler_at(gf_dressler *d, double t)
             break;
         lo = hi;
     }
+    /* weak friction: the maximum sits very near xi = 2; approach it in s = 2 - xi */
+    for (double sg = 2.0 - hi; dressler_dudxi(hi, &a) > 0.0; sg *= 0.1) {
+        if (sg < 1e-12)
+            return gf_fail(GF_EDOM,
+                           "Dressler dam break: Chezy C = %g gives no velocity maximum before "
+                           "Ritter's front at t = %g (friction too weak for the expansion; the "
+                           "frictionless solution is Ritter's)",
+                           d->chezy, t);
+        lo = hi;
+        hi = 2.0 - sg;
+    }
     gsl_function F = {dressler_dudxi, &a};
     gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     if (!s)
