@@ -92,6 +92,9 @@ static void dressler_reservoir_still_and_tip_at_the_velocity_maximum(void **stat
     gf_dressler_sample(&d, X0 - c0 - 0.1, &h, &u);
     assert_close(h, HL, 0);
     assert_close(u, 0.0, 0);
+    gf_dressler_outer(&d, X0 + 2 * c0 + 0.1, 1.0, &h, &u); /* beyond Ritter's front */
+    assert_close(h, 0.0, 0);
+    assert_close(u, 0.0, 0);
     /* u of the outer region is largest at the tip */
     for (double dx = 1e-3; dx < 0.3; dx *= 2) {
         double hl, ul, hr, ur;

@@ -178,7 +178,6 @@ void gf_riemann_sample(const gf_riemann *rp, double x, double t, double *h, doub
 
 /* ---- Dressler's dam break with Chezy friction (see exact.h) ------------- */
 
-
 static double dressler_a1(double xi)
 {
     const double s = 2.0 - xi;
@@ -226,6 +225,11 @@ void gf_dressler_outer(const gf_dressler *d, double x, double t, double *h, doub
     const double X = x - d->x0, c0 = sqrt(d->g * d->hl);
     if (t <= 0.0 || X <= -c0 * t) {
         *h = X <= 0.0 ? d->hl : 0.0;
+        *u = 0.0;
+        return;
+    }
+    if (X >= 2.0 * c0 * t) { /* beyond Ritter's front: dry (a1, a2 need xi < 2) */
+        *h = 0.0;
         *u = 0.0;
         return;
     }

@@ -91,7 +91,8 @@ gf_status gf_dressler_at(gf_dressler *d, double t);
 /* h and u at x for the time of the last gf_dressler_at(). */
 void gf_dressler_sample(const gf_dressler *d, double x, double *h, double *u);
 
-/* Outer (first-order) expansion alone, at any (x, t > 0), for tests. */
+/* Outer (first-order) expansion alone, at any (x, t > 0), for tests; the
+ * still reservoir for xi <= -1, dry (h = u = 0) beyond Ritter's front. */
 void gf_dressler_outer(const gf_dressler *d, double x, double t, double *h, double *u);
 
 /* beta of the dimensionless Savage–Hutter equations: epsilon K cos(zeta). */
