@@ -114,6 +114,50 @@ static void implicit_update_never_reverses_velocity(void **state)
     assert_close(gf_friction_decelerate(-0.1, 5.0), 0.0, 0);
 }
 
+/* The static bound is the limit of the unregularised shear as |u| -> 0+,
+ * whatever u0 the law carries: mu_s p_b/rho for mu_i (eq. 25 at I_b = 0),
+ * mu p_b/rho for coulomb and voellmy, 0 for chezy, none and p_b <= 0. */
+static void static_bound_is_the_coulomb_limit(void **state)
+{
+    (void)state;
+    gf_friction_state s = reference_state();
+    const double p = s.pb / s.rho;
+    gf_friction f;
+    double tau_s = -1;
+    gf_friction_init(&f, "mu_i"); /* Table 1, u0 = 1e-4 */
+    assert_int_equal(gf_friction_static_bound(&f, &s, &tau_s), GF_SUCCESS);
+    assert_close(tau_s, 0.38 * p, 1e-14);
+    /* independent: unregularised shear at vanishing speed */
+    gf_friction_set(&f, "u0", 0.0);
+    gf_friction_result r;
+    s.speed = 1e-12;
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.tau, tau_s, 1e-9);
+    /* the regularised law at rest exerts nothing: the bound is not its value */
+    gf_friction_set(&f, "u0", 1e-4);
+    s.speed = 0.0;
+    gf_friction_eval(&f, &s, &r);
+    assert_close(r.tau, 0.0, 0);
+    gf_friction_init(&f, "coulomb");
+    gf_friction_set(&f, "mu", 0.7);
+    gf_friction_set(&f, "u0", 1e-3);
+    gf_friction_static_bound(&f, &s, &tau_s);
+    assert_close(tau_s, 0.7 * p, 1e-14);
+    gf_friction_init(&f, "voellmy");
+    gf_friction_static_bound(&f, &s, &tau_s);
+    assert_close(tau_s, 0.2 * p, 1e-14);
+    gf_friction_init(&f, "chezy");
+    gf_friction_static_bound(&f, &s, &tau_s);
+    assert_close(tau_s, 0.0, 0);
+    gf_friction_init(&f, "mu_i");
+    s.pb = -5.0; /* lift-off */
+    gf_friction_static_bound(&f, &s, &tau_s);
+    assert_close(tau_s, 0.0, 0);
+    s.pb = NAN;
+    assert_int_equal(gf_friction_static_bound(&f, &s, &tau_s), GF_ENONFINITE);
+    assert_int_equal(gf_friction_static_bound(NULL, &s, &tau_s), GF_EINVAL);
+}
+
 static void unknown_law_lists_valid_names(void **state)
 {
     (void)state;
@@ -173,6 +217,7 @@ int main(void)
         cmocka_unit_test(coulomb_chezy_voellmy_none),
         cmocka_unit_test(no_contact_no_coulomb_friction),
         cmocka_unit_test(implicit_update_never_reverses_velocity),
+        cmocka_unit_test(static_bound_is_the_coulomb_limit),
         cmocka_unit_test(unknown_law_lists_valid_names),
         cmocka_unit_test(bad_coefficients_name_key_and_range),
         cmocka_unit_test(bad_state_is_an_error_not_nan),

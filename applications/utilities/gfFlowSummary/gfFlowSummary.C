@@ -3,9 +3,12 @@
 
 Description
     For every selected time: volume (mass/rho) sum(h S), max thickness, max
-    speed, mass-weighted mean speed sum(h |Us| S)/sum(h S), and the runout — the furthest point, projected on a
-    direction, of the h = threshold level curve (default 0.01 m, the paper's),
-    interpolated linearly between face centres across edges — appended as a row to postProcessing/gfFlowSummary.dat.
+    speed, mass-weighted mean speed sum(h |Us| S)/sum(h S), the runout — the
+    furthest point, projected on a direction, of the h = threshold level curve
+    (default 0.01 m, the paper's),
+    interpolated linearly between face centres across edges — and the max
+    speed of the faces with h >= threshold (the deposit inside that curve),
+    appended as a row to postProcessing/gfFlowSummary.dat.
     With -csv, also writes postProcessing/profiles/<time>.csv with every face:
     x,y,z,h,speed,Ux,Uy,Uz[,pb].
 
@@ -44,7 +47,8 @@ int main(int argc, char *argv[])
     mkDir(outDir);
     OFstream table(outDir/"gfFlowSummary.dat");
     table.precision(12);
-    table << "# time volume max_h max_speed mean_speed runout(h>=" << threshold << ")" << nl;
+    table << "# time volume max_h max_speed mean_speed runout(h>=" << threshold
+          << ") max_speed(h>=" << threshold << ")" << nl;
 
     forAll(timeDirs, timei)
     {
@@ -96,12 +100,22 @@ int main(int argc, char *argv[])
             }
         }
         reduce(runout, maxOp<scalar>());
+        scalar maxSpeedThick = 0;
+        forAll(h, i)
+        {
+            if (h[i] >= threshold)
+            {
+                maxSpeedThick = max(maxSpeedThick, speed[i]);
+            }
+        }
+        reduce(maxSpeedThick, maxOp<scalar>());
         const scalar volume = gSum(h.primitiveField()*aMesh.S().field());
         // mass-weighted mean speed: |momentum| density averaged over the mass
         const scalar meanSpeed =
             gSum(h.primitiveField()*speed*aMesh.S().field())/max(volume, VSMALL);
         table << runTime.timeName() << ' ' << volume << ' ' << gMax(h.primitiveField()) << ' '
-              << gMax(speed) << ' ' << meanSpeed << ' ' << (runout > -GREAT ? runout : NAN) << nl;
+              << gMax(speed) << ' ' << meanSpeed << ' ' << (runout > -GREAT ? runout : NAN) << ' '
+              << maxSpeedThick << nl;
         Info<< "Time " << runTime.timeName() << ": volume " << volume << " m3, max h "
             << gMax(h.primitiveField()) << " m, max speed " << gMax(speed) << " m/s, runout "
             << runout << " m" << endl;

@@ -233,3 +233,21 @@ double gf_friction_decelerate(double u, double decel_dt)
         return 0.0;
     return u > 0.0 ? m : -m;
 }
+
+gf_status gf_friction_static_bound(const gf_friction *f, const gf_friction_state *s, double *tau_s)
+{
+    if (!f || !f->type || !s || !tau_s)
+        return gf_fail(GF_EINVAL, "gf_friction_static_bound: null argument or uninitialised law");
+    gf_friction at_rest = *f;
+    for (size_t i = 0; i < f->type->n_params; ++i)
+        if (strcmp(f->type->params[i].name, "u0") == 0)
+            at_rest.p[i] = 0.0; /* exact Coulomb: tau(0+) is the static bound */
+    gf_friction_state rest = *s;
+    rest.speed = 0.0;
+    gf_friction_result r;
+    const gf_status st = gf_friction_eval(&at_rest, &rest, &r);
+    if (st)
+        return st;
+    *tau_s = r.tau;
+    return GF_SUCCESS;
+}

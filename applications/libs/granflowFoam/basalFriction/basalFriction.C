@@ -105,3 +105,33 @@ void Foam::granflow::basalFriction::evaluate
     tau.correctBoundaryConditions();
     nu.correctBoundaryConditions();
 }
+
+
+void Foam::granflow::basalFriction::staticBound
+(
+    const areaScalarField& h,
+    const areaScalarField& pb,
+    const scalar rho,
+    const scalar g,
+    const scalar hMin,
+    scalarField& tauS
+) const
+{
+    tauS.setSize(h.size());
+    forAll(h, facei)
+    {
+        if (h[facei] < hMin)
+        {
+            tauS[facei] = 0;
+            continue;
+        }
+        const gf_friction_state s{h[facei], 0, pb[facei], rho, g};
+        if (gf_friction_static_bound(&law_, &s, &tauS[facei]) != GF_SUCCESS)
+        {
+            FatalErrorInFunction
+                << "Static bound of friction law " << lawName() << " failed on face " << facei
+                << " (h = " << s.h << ", pb = " << s.pb << "): " << gf_error_detail()
+                << exit(FatalError);
+        }
+    }
+}

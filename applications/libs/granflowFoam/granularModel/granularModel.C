@@ -32,11 +32,11 @@ Foam::scalar Foam::granflow::granularModel::readScalar
 }
 
 
-bool Foam::granflow::granularModel::readSwitch(const word& key) const
+bool Foam::granflow::granularModel::readSwitch(const word& key, bool deflt) const
 {
     if (!dict_.found(key))
     {
-        return true;
+        return deflt;
     }
     return Switch(dict_.get<word>(key));
 }
@@ -52,7 +52,8 @@ Foam::granflow::granularModel::granularModel(const dictionary& dict)
     friction_(dict),
     lateralPressure_(readSwitch("lateralPressure")),
     centrifugalPressure_(readSwitch("centrifugalPressure")),
-    lateralPressureFeedback_(readSwitch("lateralPressureFeedback"))
+    lateralPressureFeedback_(readSwitch("lateralPressureFeedback")),
+    staticFriction_(readSwitch("staticFriction", false))
 {
     const scalar one = 1, tiny = 1e-6;
     xi_ = readScalar("xi", 1e-6, 2, &one);
@@ -110,5 +111,6 @@ void Foam::granflow::granularModel::report(Ostream& os) const
         << " (K_act " << earthPressure_.k_act << ", K_pass " << earthPressure_.k_pass << ")"
         << nl << "    terms: lateralPressure " << Switch(lateralPressure_)
         << ", centrifugalPressure " << Switch(centrifugalPressure_)
-        << ", lateralPressureFeedback " << Switch(lateralPressureFeedback_) << endl;
+        << ", lateralPressureFeedback " << Switch(lateralPressureFeedback_)
+        << ", staticFriction " << Switch(staticFriction_) << endl;
 }

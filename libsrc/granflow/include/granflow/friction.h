@@ -117,6 +117,17 @@ gf_status gf_friction_check(const gf_friction *f);
 gf_status gf_friction_eval(const gf_friction *f, const gf_friction_state *s,
                            gf_friction_result *r);
 
+/* Coulomb static bound: the largest basal shear per unit density tau_s =
+ * |tau_b|/rho the law can exert on material at rest, i.e. tau as |u| -> 0+ with
+ * the regularisation u0 set to zero (finite-area paper eqs. 24-26 at I_b = 0):
+ * mu_s p_b/rho for mu_i, mu p_b/rho for coulomb and voellmy, 0 for chezy and
+ * none, 0 where p_b <= 0.  s->speed is not used.  A solver holds material at
+ * rest where the tangential driving force per unit area (per unit density)
+ * does not exceed tau_s (Coulomb's static condition; kinetic paper Def. 1 in
+ * 1D).  Same argument checks as gf_friction_eval. */
+gf_status gf_friction_static_bound(const gf_friction *f, const gf_friction_state *s,
+                                   double *tau_s);
+
 /* Explicit friction step that never reverses the motion: the velocity
  * component u reduced in magnitude by decel_dt >= 0 (deceleration times time
  * step), stopping at zero: sgn(u) max(0, |u| - decel_dt). */
