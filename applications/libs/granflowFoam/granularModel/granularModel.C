@@ -38,7 +38,15 @@ bool Foam::granflow::granularModel::readSwitch(const word& key, bool deflt) cons
     {
         return deflt;
     }
-    return Switch(dict_.get<word>(key));
+    const word value(dict_.get<word>(key));
+    const Switch s(value, true);
+    if (!s.valid())
+    {
+        FatalIOErrorInFunction(dict_)
+            << "Invalid entry " << key << " " << value
+            << ": allowed on/off, yes/no, true/false" << exit(FatalIOError);
+    }
+    return s;
 }
 
 
