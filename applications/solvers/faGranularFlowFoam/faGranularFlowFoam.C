@@ -48,7 +48,10 @@ int main(int argc, char *argv[])
     // threshold are mapped and unmapped each time and the heap top is
     // trimmed back to the kernel: a third of the run time went to page
     // faults and TLB flushes (perf, curved slope at 0.5 m).  Keep the memory.
-    mallopt(M_MMAP_THRESHOLD, 1 << 30);
+    if (!mallopt(M_MMAP_THRESHOLD, 1 << 30))
+    {
+        mallopt(M_MMAP_THRESHOLD, 32 << 20);   // the cap of older glibc
+    }
     mallopt(M_TRIM_THRESHOLD, 1 << 30);
     mallopt(M_TOP_PAD, 64 << 20);
 #endif
