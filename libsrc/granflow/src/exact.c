@@ -9,6 +9,30 @@
 double gf_sh_beta(double epsilon, double k, double zeta) { return epsilon * k * cos(zeta); }
 
 /* Toro's depth function with beta in place of g. */
+/* Root of F in the bracket [lo, hi] by GSL's Brent solver, iterated until
+ * gsl_root_test_interval(epsabs, epsrel) holds (at most 200 iterations).
+ * `what` names the problem in the GF_ENOMEM message; `nonconv` is the
+ * GF_ENOCONV message. */
+static gf_status brent_root(gsl_function *F, double lo, double hi, double epsabs, double epsrel,
+                            const char *what, const char *nonconv, double *root)
+{
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!s)
+        return gf_fail(GF_ENOMEM, "%s: out of memory", what);
+    gsl_root_fsolver_set(s, F, lo, hi);
+    int status = GSL_CONTINUE;
+    for (int it = 0; it < 200 && status == GSL_CONTINUE; ++it) {
+        gsl_root_fsolver_iterate(s);
+        status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s),
+                                        epsabs, epsrel);
+    }
+    *root = gsl_root_fsolver_root(s);
+    gsl_root_fsolver_free(s);
+    if (status != GSL_SUCCESS)
+        return gf_fail(GF_ENOCONV, "%s", nonconv);
+    return GF_SUCCESS;
+}
+
 static double fk(double beta, double h, double hk)
 {
     if (h <= hk)
@@ -58,21 +82,11 @@ gf_status gf_riemann_solve(gf_riemann *rp, double beta, double hl, double ul, do
             return gf_fail(GF_ENOCONV, "Riemann problem: could not bracket the middle depth");
     }
     gsl_function F = {riemann_fn, rp};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (!s)
-        return gf_fail(GF_ENOMEM, "Riemann problem: out of memory");
-    gsl_root_fsolver_set(s, &F, lo, hi);
-    int status = GSL_CONTINUE;
-    for (int it = 0; it < 200 && status == GSL_CONTINUE; ++it) {
-        gsl_root_fsolver_iterate(s);
-        lo = gsl_root_fsolver_x_lower(s);
-        hi = gsl_root_fsolver_x_upper(s);
-        status = gsl_root_test_interval(lo, hi, 0.0, 4e-16);
-    }
-    const double hm = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
-    if (status != GSL_SUCCESS)
-        return gf_fail(GF_ENOCONV, "Riemann problem: Brent iteration did not converge");
+    double hm;
+    st = brent_root(&F, lo, hi, 0.0, 4e-16, "Riemann problem",
+                    "Riemann problem: Brent iteration did not converge", &hm);
+    if (st)
+        return st;
     rp->hm = hm;
     rp->um = 0.5 * (ul + ur) + 0.5 * (fk(beta, hm, hr) - fk(beta, hm, hl));
     return GF_SUCCESS;
@@ -290,20 +304,11 @@ gf_status gf_dressler_at(gf_dressler *d, double t)
         hi = 2.0 - sg;
     }
     gsl_function F = {dressler_dudxi, &a};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (!s)
-        return gf_fail(GF_ENOMEM, "Dressler dam break: out of memory");
-    gsl_root_fsolver_set(s, &F, lo, hi);
-    int status = GSL_CONTINUE;
-    for (int it = 0; it < 200 && status == GSL_CONTINUE; ++it) {
-        gsl_root_fsolver_iterate(s);
-        status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s),
-                                        1e-15, 0.0);
-    }
-    const double xi_tip = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
-    if (status != GSL_SUCCESS)
-        return gf_fail(GF_ENOCONV, "Dressler dam break: tip position did not converge");
+    double xi_tip;
+    st = brent_root(&F, lo, hi, 1e-15, 0.0, "Dressler dam break",
+                    "Dressler dam break: tip position did not converge", &xi_tip);
+    if (st)
+        return st;
     const double X_tip = xi_tip * c0 * t;
     double c, u;
     dressler_outer_cu(d, X_tip, t, &c, &u);
@@ -324,8 +329,8 @@ gf_status gf_dressler_at(gf_dressler *d, double t)
     gsl_function H = {dressler_h_of_X, &a};
     double vol, err;
     gsl_error_handler_t *old = gsl_set_error_handler_off();
-    status = gsl_integration_qag(&H, -c0 * t, X_tip, 0.0, 1e-13, 200, GSL_INTEG_GAUSS31, w, &vol,
-                                 &err);
+    const int status = gsl_integration_qag(&H, -c0 * t, X_tip, 0.0, 1e-13, 200,
+                                           GSL_INTEG_GAUSS31, w, &vol, &err);
     gsl_set_error_handler(old);
     gsl_integration_workspace_free(w);
     if (status)
