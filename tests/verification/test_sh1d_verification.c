@@ -210,6 +210,54 @@ static void pile_stays(const gf_sh1d_type *t, int variant, double fraction, cons
     assert_true(dh <= 1e-12);
     gf_sh1d_free(s);
 }
+/* Kinetic Schemes 2 and 3 at rest with the adaptive time step (issue 11):
+ * an admissible pile (0.99 of the bound) stays at rest to t = 100 at every
+ * Courant number the solver accepts, the default (cfl = 0 -> 0.9) included;
+ * a pile beyond the bound (1.2) slumps, comes to rest and stays at rest. */
+static double pile_run(int scheme, double cfl, double fraction, double t1, double t2, double *du)
+{
+    gf_sh1d_config c;
+    kinetic_paper_config(&c, gf_sh1d_kinetic, scheme);
+    c.dt_fixed = 0.0;
+    c.cfl = cfl;
+    double slope = fraction * tan(PI / 10) / 0.4;
+    gf_sh1d *s = make(gf_sh1d_kinetic, &c, pile_init, &slope);
+    double h0[200], u0[200], h[200], u[200];
+    advance(s, t1);
+    gf_sh1d_means(s, h0, u0);
+    advance(s, t2);
+    gf_sh1d_means(s, h, u);
+    double dh = 0;
+    *du = 0;
+    for (int i = 0; i < 200; ++i) {
+        dh = fmax(dh, fabs(h[i] - h0[i]));
+        *du = fmax(*du, fmax(fabs(u[i]), fabs(u0[i])));
+    }
+    gf_sh1d_free(s);
+    return dh;
+}
+static void kinetic_rest_at_every_courant_number(void **state)
+{
+    (void)state;
+    const double cfls[] = {0.0, 0.25, 0.5, 0.75, 0.9, 1.0};
+    for (int scheme = 2; scheme <= 3; ++scheme) {
+        printf("  kinetic %d admissible pile (0.99 of the bound), t = 0..100, max|dh| / max|u|:", scheme);
+        for (size_t j = 0; j < sizeof cfls / sizeof cfls[0]; ++j) {
+            double du;
+            const double dh = pile_run(scheme, cfls[j], 0.99, 0.0, 100.0, &du);
+            printf(" cfl %g%s %.0e/%.0e;", cfls[j], cfls[j] == 0 ? " (default)" : "", dh, du);
+            assert_true(dh <= 1e-12);
+            assert_true(du <= 1e-12);
+        }
+        double du;
+        const double dh = pile_run(scheme, 0.0, 1.2, 30.0, 100.0, &du);
+        printf("\n  kinetic %d pile at 1.2 of the bound: slumps, at rest from t = 30 to 100: "
+               "max|dh| %.0e, max|u| %.0e\n", scheme, dh, du);
+        assert_true(dh <= 1e-12);
+        assert_true(du <= 1e-12);
+    }
+}
+
 static void admissible_pile_stays_at_rest(void **state)
 {
     (void)state;
@@ -465,6 +513,7 @@ int main(void)
         cmocka_unit_test(dg_orders_on_smooth_problem),
         cmocka_unit_test(riemann_problem_against_exact),
         cmocka_unit_test(admissible_pile_stays_at_rest),
+        cmocka_unit_test(kinetic_rest_at_every_courant_number),
         cmocka_unit_test(silo_starts_and_stops),
         cmocka_unit_test(depth_nonnegative_with_dry_fronts),
         cmocka_unit_test(rkdg_cases_one_and_two),

@@ -235,10 +235,22 @@ static gf_status kinetic_step(gf_sh1d *s, double dt)
         const double dF = k->f2[i] - k->f2[i - 1];
         double qn;
         if (scheme != 1 && k->slow[i]) {
-            const double a = accel(s, h, u);
-            const double mu = (q == 0.0 || hn <= s->cfg.h_eps) ? 0.0 : -q / (dt * a * hn);
+            /* Slow cell (starting, stopping, at rest): friction as an implicit
+             * Coulomb update of the whole discrete force.  The trial momentum
+             * q* = q - lam dF + dt g sin(zeta) hbar (hbar the weighted depth of
+             * the paper's Scheme 2 source) is stopped when friction can hold
+             * it, |q*| <= dt R hbar, and reduced by dt R hbar otherwise.  At
+             * rest dF is the pressure difference beta (hm+^2 - hm-^2)/2 =
+             * dx beta dh/dx hbar, so q* = dt hbar (g sin zeta - beta dh/dx) and
+             * an admissible profile (kinetic paper, Def. 1) stays exactly at
+             * rest at any time step.  (The paper's blend q = -lam dF +
+             * (1 - mu) dt g~ hbar drops q and balances only beta dh/dx, not
+             * the velocity-dependent part of the modified flux, so round-off
+             * velocities at rest grew for Courant numbers above about 0.75.) */
             const double hbar = 0.25 * (k->h[i + 1] + 2.0 * h + k->h[i - 1]);
-            qn = -lam * dF + (1.0 - mu) * dt * g_tilde(s, k, i) * hbar;
+            const double r = h > s->cfg.h_eps ? gf_sh1d_static_friction(s, h, s->cfg.zeta) / h : 0.0;
+            const double qs = q - lam * dF + dt * s->cfg.g * sin(s->cfg.zeta) * hbar;
+            qn = gf_friction_decelerate(qs, dt * r * hbar);
         } else {
             const double a = u != 0.0 ? accel(s, h, u) : g_tilde(s, k, i);
             qn = q - lam * dF + dt * a * hn;
