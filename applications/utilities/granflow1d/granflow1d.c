@@ -124,21 +124,33 @@ static const char *get_str(ini_data *d, const char *sec, const char *key, const 
     return e ? e->value : def;
 }
 
+static int parse_number(const char *t, double *v);
+
 static double get_num(ini_data *d, const char *sec, const char *key, double def, double lo, double hi)
 {
     entry *e = find(d, sec, key);
     if (!e)
         return def;
-    char *end;
-    errno = 0;
-    const double v = strtod(e->value, &end);
-    while (*end && isspace((unsigned char)*end))
-        ++end;
-    if (end == e->value || *end || errno || !isfinite(v))
+    double v;
+    if (!parse_number(e->value, &v))
         die("[%s] %s = '%s' is not a number", sec, key, e->value);
     if (v < lo || v > hi)
         die("[%s] %s = %g is outside the allowed range [%g, %g]", sec, key, v, lo, hi);
     return v;
+}
+
+/* an integer key: a number without fractional part, inside [lo, hi] */
+static long get_int(ini_data *d, const char *sec, const char *key, long def, long lo, long hi)
+{
+    entry *e = find(d, sec, key);
+    if (!e)
+        return def;
+    double v;
+    if (!parse_number(e->value, &v) || v != floor(v))
+        die("[%s] %s = '%s' is not an integer", sec, key, e->value);
+    if (v < (double)lo || v > (double)hi)
+        die("[%s] %s = %g is outside the allowed range [%ld, %ld]", sec, key, v, lo, hi);
+    return (long)v;
 }
 
 static int get_choice(ini_data *d, const char *sec, const char *key, const char *def,
@@ -224,20 +236,46 @@ static void initial(double x, void *ctx, double *h, double *u)
     }
 }
 
-/* read a CSV with a header naming the columns; returns rows */
-static size_t read_csv(const char *path, const char *const *cols, int ncols, double **out)
+/* A whole token as a finite number: surrounding blanks allowed, nothing else
+ * ("0.5inf", "1e", "2,5" are not numbers). */
+static int parse_number(const char *t, double *v)
+{
+    char *end;
+    while (isspace((unsigned char)*t))
+        ++t;
+    errno = 0;
+    *v = strtod(t, &end);
+    if (end == t)
+        return 0;
+    while (*end && isspace((unsigned char)*end))
+        ++end;
+    return !*end && !errno && isfinite(*v);
+}
+
+/* A CSV table with a header naming the columns: every row has one finite
+ * number per header column, the first requested column (x) is strictly
+ * increasing, and columns listed in nonneg (1 = must be >= 0) are >= 0.
+ * Errors name the file and line.  Returns the number of rows. */
+static size_t read_csv(const char *path, const char *const *cols, const int *nonneg, int ncols,
+                       double **out)
 {
     FILE *f = fopen(path, "r");
     if (!f)
         die("cannot open '%s': %s", path, strerror(errno));
-    char line[4096];
-    if (!fgets(line, sizeof line, f))
-        die("'%s' is empty", path);
+    char line[4096], head[4096];
+    size_t lineno = 0;
+    do {
+        if (!fgets(head, sizeof head, f))
+            die("'%s' has no header line", path);
+        ++lineno;
+    } while (head[0] == '#');
     int idx[8], nhead = 0;
     char *names[64];
-    for (char *t = strtok(line, ",\r\n"); t && nhead < 64; t = strtok(NULL, ",\r\n")) {
+    for (char *t = strtok(head, ",\r\n"); t; t = strtok(NULL, ",\r\n")) {
         while (isspace((unsigned char)*t))
             ++t;
+        if (nhead == 64)
+            die("'%s' line %zu: more than 64 columns", path, lineno);
         names[nhead++] = t;
     }
     for (int c = 0; c < ncols; ++c) {
@@ -246,29 +284,52 @@ static size_t read_csv(const char *path, const char *const *cols, int ncols, dou
             if (!strcmp(names[k], cols[c]))
                 idx[c] = k;
         if (idx[c] < 0)
-            die("'%s' has no column '%s' in its header", path, cols[c]);
+            die("'%s' has no column '%s' in its header (line %zu)", path, cols[c], lineno);
     }
     size_t n = 0, cap = 256;
     for (int c = 0; c < ncols; ++c)
-        out[c] = malloc(cap * sizeof **out);
+        if (!(out[c] = malloc(cap * sizeof **out)))
+            die("out of memory reading '%s'", path);
     while (fgets(line, sizeof line, f)) {
-        if (line[0] == '#' || line[0] == '\n')
+        ++lineno;
+        if (!strchr(line, '\n') && !feof(f))
+            die("'%s' line %zu: longer than %zu characters", path, lineno, sizeof line - 2);
+        if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
             continue;
         double v[64];
         int k = 0;
-        for (char *t = strtok(line, ",\r\n"); t && k < 64; t = strtok(NULL, ",\r\n")) {
-            char *end;
-            v[k] = strtod(t, &end);
-            if (end == t || !isfinite(v[k]))
-                die("'%s' line %zu: '%s' is not a number", path, n + 2, t);
+        /* split on every comma, so that an empty field is an error, not skipped */
+        for (char *t = line, *c; ; t = c + 1) {
+            c = strchr(t, ',');
+            if (c)
+                *c = 0;
+            else
+                t[strcspn(t, "\r\n")] = 0;
+            if (k == 64 || k == nhead)
+                die("'%s' line %zu: more values than the %d columns of the header", path, lineno,
+                    nhead);
+            if (!parse_number(t, &v[k]))
+                die("'%s' line %zu, column %d (%s): '%s' is not a finite number", path, lineno,
+                    k + 1, names[k], t);
             ++k;
+            if (!c)
+                break;
         }
-        if (k < nhead)
-            die("'%s' line %zu: %d values, the header has %d", path, n + 2, k, nhead);
+        if (k != nhead)
+            die("'%s' line %zu: %d values, the header has %d columns", path, lineno, k, nhead);
+        for (int c = 0; c < ncols; ++c)
+            if (nonneg[c] && v[idx[c]] < 0.0)
+                die("'%s' line %zu: %s = %g is negative (must be >= 0)", path, lineno, cols[c],
+                    v[idx[c]]);
+        if (n > 0 && !(v[idx[0]] > out[0][n - 1]))
+            die("'%s' line %zu: %s = %g does not increase (previous row %g); rows must be "
+                "sorted by strictly increasing %s", path, lineno, cols[0], v[idx[0]], out[0][n - 1],
+                cols[0]);
         if (n == cap) {
             cap *= 2;
             for (int c = 0; c < ncols; ++c)
-                out[c] = realloc(out[c], cap * sizeof **out);
+                if (!(out[c] = realloc(out[c], cap * sizeof **out)))
+                    die("out of memory reading '%s'", path);
         }
         for (int c = 0; c < ncols; ++c)
             out[c][n] = v[idx[c]];
@@ -361,8 +422,9 @@ int main(int argc, char **argv)
         if (!path)
             die("[topography] type = tabulated needs file");
         static const char *const cols[] = {"x", "zeta"};
+        static const int nonneg[] = {0, 0};
         double *col[2];
-        const size_t n = read_csv(path, cols, 2, col);
+        const size_t n = read_csv(path, cols, nonneg, 2, col);
         for (size_t i = 0; i < n; ++i)
             col[1][i] *= DEG;
         lib_check(gf_topography_tabulated_alloc(col[0], col[1], n, &topo), "[topography] file");
@@ -374,7 +436,7 @@ int main(int argc, char **argv)
     /* domain */
     c.x_min = get_num(&d, "domain", "x_min", 0.0, -1e300, 1e300);
     c.x_max = get_num(&d, "domain", "x_max", 30.0, -1e300, 1e300);
-    c.n_cells = (size_t)get_num(&d, "domain", "cells", 256, 4, 1e8);
+    c.n_cells = (size_t)get_int(&d, "domain", "cells", 256, 4, 100000000);
     static const char *const bc_names[] = {"transmissive", "wall", "periodic", NULL};
     c.bc_left = (gf_bc)get_choice(&d, "domain", "bc_left", "transmissive", bc_names);
     c.bc_right = (gf_bc)get_choice(&d, "domain", "bc_right", "transmissive", bc_names);
@@ -401,8 +463,9 @@ int main(int argc, char **argv)
         if (!path)
             die("[initial] shape = file needs file");
         static const char *const cols[] = {"x", "h", "u"};
+        static const int nonneg[] = {0, 1, 0};
         double *col[3];
-        ini.nf = read_csv(path, cols, 3, col);
+        ini.nf = read_csv(path, cols, nonneg, 3, col);
         if (ini.nf < 2)
             die("[initial] file '%s' needs at least 2 rows", path);
         ini.fx = col[0];
@@ -413,8 +476,8 @@ int main(int argc, char **argv)
     /* solver */
     static const char *const methods[] = {"rkdg", "kinetic", NULL};
     const int method = get_choice(&d, "solver", "method", "rkdg", methods);
-    c.degree = (int)get_num(&d, "solver", "degree", 2, 0, 2);
-    c.scheme = (int)get_num(&d, "solver", "scheme", 3, 1, 3);
+    c.degree = (int)get_int(&d, "solver", "degree", 2, 0, 2);
+    c.scheme = (int)get_int(&d, "solver", "scheme", 3, 1, 3);
     c.cfl = get_num(&d, "solver", "cfl", 0.0, 0.0, 1.0);
     c.dt_fixed = get_num(&d, "solver", "dt", 0.0, 0.0, 1e300);
     static const char *const onoff[] = {"off", "on", NULL};
@@ -431,11 +494,10 @@ int main(int argc, char **argv)
         char buf[512];
         snprintf(buf, sizeof buf, "%s", get_str(&d, "output", "times", ""));
         for (char *t = strtok(buf, " ,\t"); t; t = strtok(NULL, " ,\t")) {
-            char *end;
             if (nt == MAXT)
                 die("[output] times: more than %d times", MAXT);
-            times[nt] = strtod(t, &end);
-            if (end == t || *end || !(times[nt] >= 0) || (nt && times[nt] <= times[nt - 1]))
+            if (!parse_number(t, &times[nt]) || !(times[nt] >= 0) ||
+                (nt && times[nt] <= times[nt - 1]))
                 die("[output] times: '%s' is not a time after the previous one", t);
             ++nt;
         }
