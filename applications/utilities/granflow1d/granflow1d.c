@@ -23,7 +23,10 @@
  *                 sinusoid (the kinetic paper's test 5) | file (CSV x,h,u) |
  *                 cap (x0, radius, depth: sqrt(r^2 - (x-x0)^2) - depth, >= 0)
  *   [solver]      method (rkdg | kinetic), degree (2), scheme (3), cfl,
- *                 dt, limiter (on | off), gamma (0.5), tvb_m (0), h_eps, h_semi
+ *                 dt, limiter (moment | minmod | none; minmod is the rkdg
+ *                 paper's eq. 13 with gamma), gamma (0.5), tvb_m (0 for
+ *                 minmod, 1 for moment),
+ *                 velocity_limiter (on | off), h_eps, h_semi
  *   [output]      times (list), dir (.), name (case file stem), plot (no | yes),
  *                 exact (no | riemann: exact columns for a dam | dressler: Dressler's
  *                 solution for a dam on a dry bed with chezy friction), front_h (1e-3),
@@ -481,9 +484,12 @@ int main(int argc, char **argv)
     c.cfl = get_num(&d, "solver", "cfl", 0.0, 0.0, 1.0);
     c.dt_fixed = get_num(&d, "solver", "dt", 0.0, 0.0, 1e300);
     static const char *const onoff[] = {"off", "on", NULL};
-    c.limiter = get_choice(&d, "solver", "limiter", "on", onoff);
+    static const char *const limiters[] = {"none", "minmod", "moment", NULL};
+    c.limiter = (gf_limiter)get_choice(&d, "solver", "limiter", "moment", limiters);
+    c.velocity_limiter = get_choice(&d, "solver", "velocity_limiter", "on", onoff);
     c.gamma = get_num(&d, "solver", "gamma", 0.5, 1e-12, 1.0);
-    c.tvb_m = get_num(&d, "solver", "tvb_m", 0.0, 0.0, 1e300);
+    /* the paper's minmod is strict (M = 0); the moment limiter spares smooth extrema */
+    c.tvb_m = get_num(&d, "solver", "tvb_m", c.limiter == GF_LIMITER_MINMOD ? 0.0 : 1.0, 0.0, 1e300);
     c.h_eps = get_num(&d, "solver", "h_eps", 1e-10, 1e-300, 1.0);
     c.h_semi = get_num(&d, "solver", "h_semi", 1e-6, 1e-300, 1.0);
 

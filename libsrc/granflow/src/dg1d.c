@@ -21,6 +21,7 @@ typedef struct dg {
     double *h0, *q0, *h1, *q1;  /* RK stages */
     double *rh, *rq;            /* right-hand side without friction, nc * m */
     double *fm;                 /* friction term of the q modes per unit time, nc * m */
+    double *lim;                /* scratch: modes before limiting, nc * m */
     double *cap;                /* friction capacity per unit time (cell mean), nc */
     double *k;                  /* earth-pressure coefficient per cell, nc */
     double *ubar;               /* scratch: mean velocities, nc */
@@ -72,7 +73,7 @@ static gf_status dg_init(gf_sh1d *s)
 
     const size_t n = s->n, nc = n + 2, M = (size_t)d->m, G = (size_t)d->ng;
     d->nc = nc;
-    const size_t total = 9 * nc * M + 3 * nc + 2 * nc * G + 3 * (n + 1);
+    const size_t total = 10 * nc * M + 3 * nc + 2 * nc * G + 3 * (n + 1);
     double *blk = calloc(total, sizeof *blk);
     unsigned char *flags = calloc(2 * nc, 1);
     if (!blk || !flags) {
@@ -91,6 +92,7 @@ static gf_status dg_init(gf_sh1d *s)
     d->rh = p; p += nc * M;
     d->rq = p; p += nc * M;
     d->fm = p; p += nc * M;
+    d->lim = p; p += nc * M;
     d->cap = p; p += nc;
     d->k = p; p += nc;
     d->ubar = p; p += nc;
@@ -261,12 +263,39 @@ static inline double mmt(const gf_sh1d *s, double a, double b, double c)
 }
 
 /* Limiting procedure of rkdg eq. 13, one variable. */
+/* Hierarchical moment limiter (Krivodonova 2007): from the highest mode
+ * down, u_m = minmod(u_m, (u_{m-1}^{j+1} - u_{m-1}^j)/(2m-1),
+ * (u_{m-1}^j - u_{m-1}^{j-1})/(2m-1)) (TVB-relaxed when M > 0); stops at the
+ * first mode left unchanged. */
+static void limit_moments(const gf_sh1d *s, const dg *d, double *u)
+{
+    const int M = d->m;
+    /* neighbours' modes as they were before this sweep: left-right symmetric */
+    memcpy(d->lim, u, d->nc * (size_t)M * sizeof *u);
+    for (size_t c = 1; c <= s->n; ++c) {
+        double *uc = &u[c * (size_t)M];
+        const double *ul = &d->lim[(c - 1) * (size_t)M], *ur = &d->lim[(c + 1) * (size_t)M];
+        for (int m = M - 1; m >= 1; --m) {
+            const double w = 1.0 / (2.0 * m - 1.0);
+            const double lim = mmt(s, uc[m], w * (ur[m - 1] - uc[m - 1]), w * (uc[m - 1] - ul[m - 1]));
+            if (lim == uc[m])
+                break;
+            uc[m] = lim;
+        }
+    }
+}
+
+/* The limiter of the configuration on one variable (h or q). */
 static void limit_var(const gf_sh1d *s, const dg *d, double *u)
 {
+    if (s->cfg.limiter == GF_LIMITER_MOMENT && d->m > 1) {
+        limit_moments(s, d, u);
+        return;
+    }
     const size_t n = s->n;
     const int M = d->m;
     const double gam = s->cfg.gamma;
-    if (M < 2 || !s->cfg.limiter)
+    if (M < 2 || s->cfg.limiter != GF_LIMITER_MINMOD)
         return;
     /* means are not changed by limiting: use them directly */
     for (size_t c = 1; c <= n; ++c) {
@@ -281,6 +310,55 @@ static void limit_var(const gf_sh1d *s, const dg *d, double *u)
         uc[1] = mmt(s, uc[1], dm, dp);
         if (M > 2)
             uc[2] = 0.0;
+    }
+}
+
+/* Velocity bound of the wet cells: the point velocities q/h at the end and
+ * Gauss points stay within the range of the mean velocities of the cell and
+ * its wet neighbours.  The higher modes of q are blended towards u_mean h(x)
+ * (the same mean q, constant velocity):
+ *   q(x) = u_mean h(x) + theta (q(x) - u_mean h(x)),
+ * with the largest theta in [0, 1] that satisfies the bound at every point.
+ * Without it, where h(x) nearly vanishes at a cell end (a dry front, after
+ * the positivity scaling) q/h there is arbitrary: spurious speeds, wave-speed
+ * estimates and fluxes follow. */
+static void limit_velocity(const gf_sh1d *s, dg *d, double *h, double *q)
+{
+    const int M = d->m;
+    const double hs = s->cfg.h_semi;
+    for (size_t c = 1; c <= s->n; ++c) {
+        double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
+        if (hc[0] < hs)
+            continue;
+        const double ub = d->ubar[c];
+        double lo = ub, hi = ub;
+        for (size_t nb = c - 1; nb <= c + 1; nb += 2)
+            if (h[nb * (size_t)M] >= hs) {
+                lo = fmin(lo, d->ubar[nb]);
+                hi = fmax(hi, d->ubar[nb]);
+            }
+        /* a tolerance far above round-off and far below any physical velocity
+         * difference keeps the decision continuous at velocity extrema (left and
+         * right mirror images are limited alike) */
+        const double tol = 1e-8 * (fmax(fabs(lo), fabs(hi)) + sqrt(s->cfg.epsilon * d->k[c] * hc[0]));
+        lo -= tol;
+        hi += tol;
+        double theta = 1.0;
+        for (int p = -2; p < d->ng && theta > 0.0; ++p) {
+            const double x = p == -2 ? -1.0 : p == -1 ? 1.0 : d->xg[p];
+            const double hp = poly(hc, M, x), dq = poly(qc, M, x) - ub * hp;
+            if (dq == 0.0)
+                continue;
+            if (hp <= 0.0) {
+                theta = 0.0;
+                break;
+            }
+            const double room = (dq > 0.0 ? hi - ub : lo - ub) * hp / dq;
+            theta = fmin(theta, fmax(room, 0.0));
+        }
+        if (theta < 1.0)
+            for (int m = 1; m < M; ++m)
+                qc[m] = ub * hc[m] + theta * (qc[m] - ub * hc[m]);
     }
 }
 
@@ -304,7 +382,8 @@ static gf_status fix_cells(gf_sh1d *s, dg *d, double *h, double *q)
             for (int g = 0; g < d->ng; ++g)
                 hmin = fmin(hmin, poly(hc, M, d->xg[g]));
             if (hmin < 0.0) {
-                const double th = hb > 0.0 ? hb / (hb - hmin) : 0.0;
+                /* a hair inside [0, 1] so that round-off leaves every point >= 0 */
+                const double th = hb > 0.0 ? (1.0 - 1e-12) * hb / (hb - hmin) : 0.0;
                 for (int m = 1; m < M; ++m) {
                     hc[m] *= th;
                     qc[m] *= th;
@@ -337,6 +416,8 @@ static gf_status fix_cells(gf_sh1d *s, dg *d, double *h, double *q)
         for (int m = 1; m < M; ++m)
             qc[m] = 0.0;
     }
+    if (M > 1 && s->cfg.velocity_limiter)
+        limit_velocity(s, d, h, q);
     return GF_SUCCESS;
 }
 
@@ -376,18 +457,29 @@ static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
     return st;
 }
 
+/* CFL step from the largest wave speed |u| + sqrt(beta h) over every point
+ * the fluxes see (both end values and the Gauss points of every cell), not
+ * only the means: the positivity of the means (Zhang–Shu) needs
+ * dt alpha_interface <= w_GL dx. */
 static double dg_max_dt(const gf_sh1d *s)
 {
     const dg *d = s->impl;
     const int M = d->m;
     double amax = 0.0;
     for (size_t c = 1; c <= s->n; ++c) {
-        const double hb = d->h[c * (size_t)M];
-        if (hb <= s->cfg.h_eps)
+        const double *hc = &d->h[c * (size_t)M], *qc = &d->q[c * (size_t)M];
+        if (hc[0] <= s->cfg.h_eps)
             continue;
-        const double u = d->q[c * (size_t)M] / hb;
         const double beta = s->cfg.epsilon * d->k[c] * cos(d->zg[c * (size_t)d->ng]);
-        amax = fmax(amax, fabs(u) + sqrt(beta * hb));
+        double hp, up;
+        point_state(s, right_value(hc, M), right_value(qc, M), &hp, &up);
+        amax = fmax(amax, fabs(up) + sqrt(beta * hp));
+        point_state(s, left_value(hc, M), left_value(qc, M), &hp, &up);
+        amax = fmax(amax, fabs(up) + sqrt(beta * hp));
+        for (int g = 0; g < d->ng; ++g) {
+            point_state(s, poly(hc, M, d->xg[g]), poly(qc, M, d->xg[g]), &hp, &up);
+            amax = fmax(amax, fabs(up) + sqrt(beta * hp));
+        }
     }
     return amax > 0.0 ? s->cfl * s->dx / amax : HUGE_VAL;
 }
@@ -433,20 +525,22 @@ static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, double
     return st;
 }
 
-static gf_status dg_step(gf_sh1d *s, double dt)
+/* One SSP-RK3 step (section 3.2) from (h, q); GF_EPHYS when a stage made a
+ * mean depth negative (the state is then restored by the caller). */
+static gf_status rk3_step(gf_sh1d *s, dg *d, double dt)
 {
-    dg *d = s->impl;
     const size_t nm = d->nc * (size_t)d->m;
     gf_status st;
     memcpy(d->h0, d->h, nm * sizeof *d->h);
     memcpy(d->q0, d->q, nm * sizeof *d->q);
-    /* SSP-RK3 (section 3.2) */
-    if ((st = euler_stage(s, d, d->h0, d->q0, 0.0, NULL, NULL, 1.0, dt, d->h1, d->q1)))
+    if ((st = euler_stage(s, d, d->h0, d->q0, 0.0, NULL, NULL, 1.0, dt, d->h1, d->q1)) ||
+        (st = euler_stage(s, d, d->h1, d->q1, 0.75, d->h0, d->q0, 0.25, dt, d->h1, d->q1)) ||
+        (st = euler_stage(s, d, d->h1, d->q1, 1.0 / 3.0, d->h0, d->q0, 2.0 / 3.0, dt, d->h, d->q))) {
+        memcpy(d->h, d->h0, nm * sizeof *d->h);
+        memcpy(d->q, d->q0, nm * sizeof *d->q);
+        fill_ghosts(s, d, d->h, d->q);
         return st;
-    if ((st = euler_stage(s, d, d->h1, d->q1, 0.75, d->h0, d->q0, 0.25, dt, d->h1, d->q1)))
-        return st;
-    if ((st = euler_stage(s, d, d->h1, d->q1, 1.0 / 3.0, d->h0, d->q0, 2.0 / 3.0, dt, d->h, d->q)))
-        return st;
+    }
     /* cells stopped by friction in the last stage are at rest */
     for (size_t c = 1; c <= s->n; ++c)
         if (d->stopped[c])
@@ -455,6 +549,26 @@ static gf_status dg_step(gf_sh1d *s, double dt)
     fill_ghosts(s, d, d->h, d->q);
     return GF_SUCCESS;
 }
+
+/* A step of dt: where a stage would make a mean depth negative (the wave
+ * speeds grew inside the step beyond the CFL estimate), the step is
+ * repeated as two half steps, down to dt / 2^20; the number of such
+ * rejections is counted (gf_sh1d_rejected_steps). */
+static gf_status dg_substep(gf_sh1d *s, dg *d, double dt, int depth)
+{
+    gf_status st = rk3_step(s, d, dt);
+    if (st != GF_EPHYS)
+        return st;
+    if (depth == 20)
+        return gf_fail(GF_EPHYS, "rkdg: negative mean depth at t = %g even with the step "
+                                 "halved 20 times", s->t);
+    s->rejected++;
+    if ((st = dg_substep(s, d, 0.5 * dt, depth + 1)))
+        return st;
+    return dg_substep(s, d, 0.5 * dt, depth + 1);
+}
+
+static gf_status dg_step(gf_sh1d *s, double dt) { return dg_substep(s, s->impl, dt, 0); }
 
 static void dg_means(const gf_sh1d *s, double *h, double *q)
 {

@@ -29,9 +29,10 @@ void gf_sh1d_config_init(gf_sh1d_config *c)
     c->h_eps = 1e-10;
     c->h_semi = 1e-6;
     c->degree = 2;
-    c->limiter = 1;
+    c->limiter = GF_LIMITER_MOMENT;
     c->gamma = 0.5;
-    c->tvb_m = 0.0;
+    c->tvb_m = 1.0;
+    c->velocity_limiter = 1;
     c->scheme = 3;
 }
 
@@ -44,6 +45,15 @@ const gf_sh1d_type *gf_sh1d_type_lookup(const char *name)
     if (strcmp(name, "kinetic") == 0)
         return gf_sh1d_kinetic;
     return NULL;
+}
+
+int gf_limiter_lookup(const char *name)
+{
+    static const char *const names[] = {"none", "minmod", "moment"};
+    for (int i = 0; name && i < 3; ++i)
+        if (strcmp(name, names[i]) == 0)
+            return i;
+    return -1;
 }
 
 const char *gf_sh1d_type_name(const gf_sh1d_type *type) { return type ? type->name : "(null)"; }
@@ -71,6 +81,9 @@ static gf_status check_config(const gf_sh1d_config *c)
         (st = gf_check_range("gamma (minmod)", c->gamma, 1e-12, 1.0)) ||
         (st = gf_check_range("tvb_m (TVB constant)", c->tvb_m, 0.0, 1e300)))
         return st;
+    if ((int)c->limiter < 0 || (int)c->limiter > 2)
+        return gf_fail(GF_EDOM, "limiter = %d is outside {0: none, 1: minmod, 2: moment}",
+                       (int)c->limiter);
     if (c->degree < 0 || c->degree > 2)
         return gf_fail(GF_EDOM, "degree = %d is outside {0, 1, 2}", c->degree);
     if (c->scheme < 1 || c->scheme > 3)
@@ -137,6 +150,7 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
         return gf_fail(GF_EINVAL, "gf_sh1d_set_initial: null argument");
     s->t = 0.0;
     s->steps = 0;
+    s->rejected = 0;
     return s->type->set_initial(s, fn, ctx);
 }
 
@@ -192,6 +206,7 @@ gf_status gf_sh1d_advance_to(gf_sh1d *s, double t)
 
 double gf_sh1d_time(const gf_sh1d *s) { return s->t; }
 size_t gf_sh1d_steps(const gf_sh1d *s) { return s->steps; }
+size_t gf_sh1d_rejected_steps(const gf_sh1d *s) { return s->rejected; }
 size_t gf_sh1d_n_cells(const gf_sh1d *s) { return s->n; }
 double gf_sh1d_dx(const gf_sh1d *s) { return s->dx; }
 double gf_sh1d_cell_centre(const gf_sh1d *s, size_t i)

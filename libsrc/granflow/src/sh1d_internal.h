@@ -23,6 +23,7 @@ struct gf_sh1d {
     size_t n;
     double dx, t, cfl;
     size_t steps;
+    size_t rejected;             /* steps repeated with a smaller dt (positivity) */
     double *scratch;             /* 2 n: cell means for checks and diagnostics */
     void *impl;
 };

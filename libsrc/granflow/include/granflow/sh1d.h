@@ -44,6 +44,20 @@ typedef enum gf_bc {
     GF_BC_PERIODIC = 2
 } gf_bc;
 
+/* RKDG slope limiters (applied to h and q after every stage) */
+typedef enum gf_limiter {
+    GF_LIMITER_NONE = 0,
+    GF_LIMITER_MINMOD = 1, /* rkdg paper eq. 13: edge values against gamma times the
+                              neighbour differences (TVB with tvb_m); P2 -> P1 where
+                              it acts */
+    GF_LIMITER_MOMENT = 2  /* hierarchical moment limiter (Krivodonova 2007): each mode
+                              against the differences of the next lower mode of the
+                              neighbours, highest first (TVB with tvb_m); the default */
+} gf_limiter;
+
+/* "none", "minmod", "moment"; -1 for any other name. */
+int gf_limiter_lookup(const char *name);
+
 typedef struct gf_sh1d_config {
     size_t n_cells;          /* number of cells N, >= 4 */
     double x_min, x_max;     /* domain */
@@ -64,15 +78,20 @@ typedef struct gf_sh1d_config {
     double h_semi;           /* semi-wet threshold (rkdg: 1e-6) */
     /* RKDG */
     int degree;              /* polynomial degree k: 0, 1, 2 */
-    int limiter;             /* 1: minmod limiter of rkdg eq. 13, 0: none */
-    double gamma;            /* minmod gamma (rkdg: 0.5) */
-    double tvb_m;            /* TVB constant M; 0 = strict minmod (the paper's) */
+    gf_limiter limiter;      /* default GF_LIMITER_MOMENT */
+    double gamma;            /* gamma of GF_LIMITER_MINMOD (rkdg paper: 0.5) */
+    double tvb_m;            /* TVB constant M (default 1): a mode is not limited where
+                                |value| <= M dx^2, which spares smooth extrema; 0 = strict
+                                (the rkdg paper's minmod) */
+    int velocity_limiter;    /* 1 (default): point velocities q/h within the range of the
+                                mean velocities of the cell and its wet neighbours */
     /* kinetic */
     int scheme;              /* 1, 2 or 3 (kinetic paper section 3) */
 } gf_sh1d_config;
 
-/* Defaults: rkdg paper values (k = 2, gamma = 0.5, h_eps = 1e-10,
- * h_semi = 1e-6), Scheme 3, epsilon = g = chi = 1, zeta = 0, isotropic
+/* Defaults: k = 2 with the moment limiter and the velocity bound, the rkdg
+ * paper's gamma = 0.5 (for the minmod limiter), h_eps = 1e-10,
+ * h_semi = 1e-6, Scheme 3, epsilon = g = chi = 1, zeta = 0, isotropic
  * earth pressure, no friction, transmissive boundaries, N = 256 on [0, 30]. */
 void gf_sh1d_config_init(gf_sh1d_config *c);
 
@@ -107,6 +126,9 @@ gf_status gf_sh1d_advance_to(gf_sh1d *s, double t);
 
 double gf_sh1d_time(const gf_sh1d *s);
 size_t gf_sh1d_steps(const gf_sh1d *s);
+/* Steps (or half steps) that were repeated as two halves because a stage
+ * would have made a mean depth negative (RKDG; 0 for the kinetic schemes). */
+size_t gf_sh1d_rejected_steps(const gf_sh1d *s);
 size_t gf_sh1d_n_cells(const gf_sh1d *s);
 double gf_sh1d_dx(const gf_sh1d *s);
 double gf_sh1d_cell_centre(const gf_sh1d *s, size_t i);
