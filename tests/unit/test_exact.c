@@ -161,6 +161,59 @@ static void dressler_rejects_bad_input(void **state)
     printf("  expected message: %s\n", gf_error_detail());
 }
 
+/* Spreading parabolic cap: the sampled solution satisfies the source-free
+ * equations (finite-difference residual at interior points, small against
+ * the terms), keeps its volume 4/3 h0 l0, starts at rest from the cap, and
+ * its fronts tend to Ritter's speed 2 sqrt(beta h0). */
+static void spreading_cap_solves_the_equations(void **state)
+{
+    (void)state;
+    gf_spreading_cap c;
+    const double beta = 0.8, h0 = 1.0, l0 = 2.0, x0 = 1.0;
+    assert_int_equal(gf_spreading_cap_init(&c, beta, h0, l0, x0), GF_SUCCESS);
+    double rm = 0.0, rq = 0.0, scale = 0.0;
+    const double e = 1e-5;
+    for (double t = 0.5; t <= 5.0; t += 1.5) {
+        double lam, dlam;
+        assert_int_equal(gf_spreading_cap_stretch(&c, t, &lam, &dlam), GF_SUCCESS);
+        for (int i = -9; i <= 9; ++i) {
+            const double x = x0 + 0.1 * i * lam * l0;
+            double h, u, hxp, uxp, hxm, uxm, htp, utp, htm, utm;
+            gf_spreading_cap_sample(&c, x, t, &h, &u);
+            gf_spreading_cap_sample(&c, x + e, t, &hxp, &uxp);
+            gf_spreading_cap_sample(&c, x - e, t, &hxm, &uxm);
+            gf_spreading_cap_sample(&c, x, t + e, &htp, &utp);
+            gf_spreading_cap_sample(&c, x, t - e, &htm, &utm);
+            const double hx = (hxp - hxm) / (2 * e), ux = (uxp - uxm) / (2 * e);
+            const double ht = (htp - htm) / (2 * e), ut = (utp - utm) / (2 * e);
+            rm = fmax(rm, fabs(ht + u * hx + h * ux));
+            rq = fmax(rq, fabs(ut + u * ux + beta * hx));
+            scale = fmax(scale, fabs(beta * hx));
+        }
+        /* volume by the trapezoidal rule on 20,000 intervals */
+        double vol = 0.0;
+        const int n = 20000;
+        for (int i = 0; i <= n; ++i) {
+            double h, u;
+            gf_spreading_cap_sample(&c, x0 - lam * l0 + 2.0 * lam * l0 * i / n, t, &h, &u);
+            vol += (i == 0 || i == n ? 0.5 : 1.0) * h * 2.0 * lam * l0 / n;
+        }
+        assert_close(vol, 4.0 / 3.0 * h0 * l0, 1e-6);
+    }
+    printf("  spreading cap: residual mass %.1e, momentum %.1e (terms up to %.2f)\n", rm, rq, scale);
+    assert_true(rm < 1e-8 && rq < 1e-8);
+    double h, u, lam, dlam;
+    assert_int_equal(gf_spreading_cap_sample(&c, x0 + 0.5, 0.0, &h, &u), GF_SUCCESS);
+    assert_close(h, h0 * (1.0 - 0.0625), 1e-15);
+    assert_close(u, 0.0, 1e-15);
+    assert_int_equal(gf_spreading_cap_sample(&c, x0 + 2.01, 0.0, &h, &u), GF_SUCCESS);
+    assert_true(h == 0.0 && u == 0.0);
+    assert_int_equal(gf_spreading_cap_stretch(&c, 1e6, &lam, &dlam), GF_SUCCESS);
+    assert_close(l0 * dlam, 2.0 * sqrt(beta * h0), 1e-3);
+    assert_int_equal(gf_spreading_cap_stretch(&c, -1.0, &lam, &dlam), GF_EDOM);
+    assert_int_equal(gf_spreading_cap_init(&c, beta, -1.0, l0, x0), GF_EDOM);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -169,6 +222,7 @@ int main(void)
         cmocka_unit_test(dressler_reservoir_still_and_tip_at_the_velocity_maximum),
         cmocka_unit_test(dressler_conserves_the_released_volume),
         cmocka_unit_test(dressler_rejects_bad_input),
+        cmocka_unit_test(spreading_cap_solves_the_equations),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

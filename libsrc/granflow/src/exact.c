@@ -371,3 +371,70 @@ void gf_dressler_sample(const gf_dressler *d, double x, double *h, double *u)
         *u = 0.0;
     }
 }
+
+/* ---- spreading parabolic cap ------------------------------------------------ */
+gf_status gf_spreading_cap_init(gf_spreading_cap *c, double beta, double h0, double l0, double x0)
+{
+    gf_status st;
+    if (!c)
+        return gf_fail(GF_EINVAL, "gf_spreading_cap_init: null argument");
+    if ((st = gf_check_range("spreading cap beta", beta, 1e-300, 1e300)) ||
+        (st = gf_check_range("spreading cap depth h0", h0, 1e-300, 1e300)) ||
+        (st = gf_check_range("spreading cap half-width l0", l0, 1e-300, 1e300)) ||
+        (st = gf_check_range("spreading cap centre x0", x0, -1e300, 1e300)))
+        return st;
+    c->beta = beta;
+    c->h0 = h0;
+    c->l0 = l0;
+    c->x0 = x0;
+    return GF_SUCCESS;
+}
+
+typedef struct { double t, s2k; } cap_time;
+
+/* t(lam) - t of the energy integral, lam = 1 + m^2 (m >= 0 keeps it smooth at 1) */
+static double cap_time_fn(double m, void *params)
+{
+    const cap_time *p = params;
+    const double lam = 1.0 + m * m;
+    return (sqrt(lam) * m + asinh(m)) / p->s2k - p->t;
+}
+
+gf_status gf_spreading_cap_stretch(const gf_spreading_cap *c, double t, double *lam, double *dlam)
+{
+    if (!(t >= 0.0) || !isfinite(t))
+        return gf_fail(GF_EDOM, "spreading cap: time t = %g must be finite and >= 0", t);
+    const double k = 2.0 * c->beta * c->h0 / (c->l0 * c->l0), s2k = sqrt(2.0 * k);
+    double m = 0.0;
+    if (t > 0.0) {
+        cap_time p = {t, s2k};
+        gsl_function F = {cap_time_fn, &p};
+        double hi = 1.0;
+        while (cap_time_fn(hi, &p) < 0.0)
+            hi *= 2.0;
+        gf_status st = brent_root(&F, 0.0, hi, 0.0, 4e-16, "spreading cap",
+                                  "spreading cap: Brent iteration did not converge", &m);
+        if (st)
+            return st;
+    }
+    *lam = 1.0 + m * m;
+    *dlam = s2k * sqrt(1.0 - 1.0 / *lam);
+    return GF_SUCCESS;
+}
+
+gf_status gf_spreading_cap_sample(const gf_spreading_cap *c, double x, double t, double *h,
+                                  double *u)
+{
+    double lam, dlam;
+    gf_status st = gf_spreading_cap_stretch(c, t, &lam, &dlam);
+    if (st)
+        return st;
+    const double X = x - c->x0, eta = X / (lam * c->l0);
+    if (fabs(eta) >= 1.0) {
+        *h = *u = 0.0;
+        return GF_SUCCESS;
+    }
+    *h = c->h0 / lam * (1.0 - eta * eta);
+    *u = X * dlam / lam;
+    return GF_SUCCESS;
+}

@@ -95,6 +95,35 @@ void gf_dressler_sample(const gf_dressler *d, double x, double *h, double *u);
  * still reservoir for xi <= -1, dry (h = u = 0) beyond Ritter's front. */
 void gf_dressler_outer(const gf_dressler *d, double x, double t, double *h, double *u);
 
+/*
+ * Spreading parabolic cap on a flat frictionless bed: the self-similar
+ * solution of the source-free system above with two dry fronts,
+ *
+ *     h = (h0/lam) (1 - X^2/(lam l0)^2)_+,   u = X lam'/lam,   X = x - x0,
+ *
+ * where the momentum equation reduces to lam'' = k/lam^2, k = 2 beta h0/l0^2,
+ * lam(0) = 1, lam'(0) = 0.  Its energy integral lam'^2 = 2k(1 - 1/lam) gives
+ * t(lam) = (sqrt(lam (lam - 1)) + ln(sqrt(lam) + sqrt(lam - 1))) / sqrt(2k),
+ * inverted by GSL's Brent solver.  The fronts x0 +- lam l0 move at
+ * l0 lam' -> 2 sqrt(beta h0), Ritter's front speed, as t -> infinity.
+ * Smooth initial data with dry fronts: the 1D solvers' dry-front test
+ * without the start-up error of a dam break.
+ */
+typedef struct gf_spreading_cap {
+    double beta, h0, l0, x0;
+} gf_spreading_cap;
+
+/* beta > 0, h0 > 0, half-width l0 > 0, centre x0; all finite. */
+gf_status gf_spreading_cap_init(gf_spreading_cap *c, double beta, double h0, double l0, double x0);
+
+/* lam(t) and lam'(t) for t >= 0. */
+gf_status gf_spreading_cap_stretch(const gf_spreading_cap *c, double t, double *lam, double *dlam);
+
+/* h and u at (x, t >= 0); dry (0, 0) outside the fronts.  Fails only when t
+ * is negative or not finite. */
+gf_status gf_spreading_cap_sample(const gf_spreading_cap *c, double x, double t, double *h,
+                                  double *u);
+
 /* beta of the dimensionless Savage–Hutter equations: epsilon K cos(zeta). */
 double gf_sh_beta(double epsilon, double k, double zeta);
 
