@@ -5,9 +5,17 @@
  *            L1 error of h against the exact solution;
  *   smooth:  periodic 35 deg slope with Coulomb friction, t = 0.1 (the
  *            verification test's problem, limiter off for DG), L1 error
- *            against RKDG P2 on 2048 cells.
+ *            against RKDG P2 on 2048 cells;
+ *   smoothlim: the same with the default limiters on (moment, TVB M = 1,
+ *            velocity bound);
+ *   ritter:  dam break on a dry flat bed (h 1 | 0 at x = 6 on [0, 20], beta = 1,
+ *            wall at x = 0), t = 5: L1 error of h against the exact solution
+ *            and the front error (the h = 1e-3 level of the cell means) in cells;
+ *   cap:     spreading parabolic cap (h0 = 1, l0 = 2, beta = 1) on [-15, 15],
+ *            t = 5: the same two errors.
  * Prints: problem, scheme, N, L1 error, CPU seconds, cell updates per second
- * (cells x steps / CPU s; DG counts a three-stage step once).  CSV on stdout.
+ * (cells x steps / CPU s; DG counts a three-stage step once), front error in
+ * cells (nan without a dry front).  CSV on stdout.
  */
 #include <math.h>
 #include <stdio.h>
@@ -32,11 +40,34 @@ static void smooth_init(double x, void *c, double *h, double *u)
     *u = 1 + 0.1 * cos(2 * PI * x);
 }
 
+enum { RIEMANN, SMOOTH, SMOOTHLIM, RITTER, CAP, NPROBLEMS };
+static const char *const problem_names[NPROBLEMS] = {"riemann", "smooth", "smoothlim", "ritter", "cap"};
+static gf_spreading_cap cap;
+
+static void dam_init(double x, void *c, double *h, double *u)
+{
+    (void)c;
+    *h = x <= 6.0 ? 1.0 : 0.0;
+    *u = 0.0;
+}
+static void cap_init(double x, void *c, double *h, double *u)
+{
+    (void)c;
+    gf_spreading_cap_sample(&cap, x, 0.0, h, u);
+}
+
 static void configure(gf_sh1d_config *c, int problem, int variant, size_t n)
 {
     gf_sh1d_config_init(c);
     c->n_cells = n;
-    if (problem == 0) {
+    if (problem == RITTER) {
+        c->x_min = 0;
+        c->x_max = 20;
+        c->bc_left = GF_BC_WALL;
+    } else if (problem == CAP) {
+        c->x_min = -15;
+        c->x_max = 15;
+    } else if (problem == RIEMANN) {
         c->x_min = 0;
         c->x_max = 10;
         c->epsilon = 0.4;
@@ -45,7 +76,10 @@ static void configure(gf_sh1d_config *c, int problem, int variant, size_t n)
         c->x_max = 1;
         c->zeta = 35 * PI / 180;
         c->bc_left = c->bc_right = GF_BC_PERIODIC;
-        c->limiter = 0;
+        if (problem == SMOOTH) {
+            c->limiter = GF_LIMITER_NONE;
+            c->velocity_limiter = 0;
+        }
         gf_friction_init(&c->friction, "coulomb");
         gf_friction_set(&c->friction, "mu", tan(PI / 6));
         gf_friction_set(&c->friction, "u0", 0.0);
@@ -65,9 +99,11 @@ static gf_sh1d *run(int problem, int variant, size_t n, double *cpu)
         fprintf(stderr, "bench1d: %s\n", gf_error_detail());
         exit(1);
     }
-    gf_sh1d_set_initial(s, problem == 0 ? rp_init : smooth_init, NULL);
+    static const gf_sh1d_initial_fn init[NPROBLEMS] = {rp_init, smooth_init, smooth_init, dam_init,
+                                                        cap_init};
+    gf_sh1d_set_initial(s, init[problem], NULL);
     const clock_t t0 = clock();
-    if (gf_sh1d_advance_to(s, problem == 0 ? 5.0 : 0.1)) {
+    if (gf_sh1d_advance_to(s, problem == SMOOTH || problem == SMOOTHLIM ? 0.1 : 5.0)) {
         fprintf(stderr, "bench1d: %s\n", gf_error_detail());
         exit(1);
     }
@@ -75,15 +111,60 @@ static gf_sh1d *run(int problem, int variant, size_t n, double *cpu)
     return s;
 }
 
+/* last crossing of h = 1e-3 by the cell means, linear between centres */
+static double front_of(const gf_sh1d *s, const double *h)
+{
+    for (size_t i = gf_sh1d_n_cells(s) - 1; i > 0; --i)
+        if (h[i - 1] >= 1e-3 && h[i] < 1e-3)
+            return gf_sh1d_cell_centre(s, i - 1) + (h[i - 1] - 1e-3) / (h[i - 1] - h[i]) * gf_sh1d_dx(s);
+    return NAN;
+}
+
+/* L1 error of the cell means against the exact cell means (16 samples) and the
+ * front error in cells, for the dry-front problems */
+static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *ritter, double *front)
+{
+    const size_t n = gf_sh1d_n_cells(s);
+    const double dx = gf_sh1d_dx(s), t = 5.0;
+    double *h = malloc(2 * n * sizeof *h), e = 0.0;
+    gf_sh1d_means(s, h, h + n);
+    for (size_t i = 0; i < n; ++i) {
+        double mean = 0.0;
+        for (int k = 0; k < 16; ++k) {
+            const double x = gf_sh1d_cell_centre(s, i) + dx * ((k + 0.5) / 16.0 - 0.5);
+            double he, ue;
+            if (problem == CAP)
+                gf_spreading_cap_sample(&cap, x, t, &he, &ue);
+            else
+                gf_riemann_sample(ritter, x, t, &he, &ue);
+            mean += he / 16.0;
+        }
+        e += fabs(h[i] - mean) * dx;
+    }
+    double xe;
+    if (problem == CAP) {
+        double lam, dlam;
+        gf_spreading_cap_stretch(&cap, t, &lam, &dlam);
+        xe = lam * cap.l0 * sqrt(1.0 - 1e-3 * lam / cap.h0);
+    } else {
+        xe = 6.0 + (2.0 - 3.0 * sqrt(1e-3)) * t; /* Ritter's h = 1e-3 level, beta = 1 */
+    }
+    *front = (front_of(s, h) - xe) / dx;
+    free(h);
+    return e;
+}
+
 int main(void)
 {
     static const char *names[6] = {"kinetic1", "kinetic2", "kinetic3", "rkdgP0", "rkdgP1", "rkdgP2"};
-    gf_riemann ex;
+    gf_riemann ex, ritter;
     gf_riemann_solve(&ex, 0.4, 1.0, 0.0, 0.5, 0.0, 5.0);
+    gf_riemann_solve(&ritter, 1.0, 1.0, 0.0, 0.0, 0.0, 6.0);
+    gf_spreading_cap_init(&cap, 1.0, 1.0, 2.0, 0.0);
     double cpu;
-    gf_sh1d *ref = run(1, 5, 2048, &cpu);
-    printf("problem,scheme,N,L1_error,cpu_s,cell_updates_per_s\n");
-    for (int problem = 0; problem < 2; ++problem)
+    gf_sh1d *ref = run(SMOOTH, 5, 2048, &cpu);
+    printf("problem,scheme,N,L1_error,cpu_s,cell_updates_per_s,front_error_cells\n");
+    for (int problem = 0; problem < NPROBLEMS; ++problem)
         for (int v = 0; v < 6; ++v)
             for (size_t n = 50; n <= 1600; n *= 2) {
                 /* repeat short runs so that the CPU time is measurable */
@@ -98,9 +179,15 @@ int main(void)
                     ++reps;
                 } while (total < 0.05 && reps < 200);
                 cpu = total / reps;
-                const double e = problem == 0 ? gf_sh1d_l1_error_riemann(s, &ex, 5.0) : gf_sh1d_l1_difference(s, ref);
-                printf("%s,%s,%zu,%.6e,%.6e,%.4e\n", problem == 0 ? "riemann" : "smooth", names[v], n, e,
-                       cpu, (double)n * (double)gf_sh1d_steps(s) / fmax(cpu, 1e-9));
+                double e, front = NAN;
+                if (problem == RIEMANN)
+                    e = gf_sh1d_l1_error_riemann(s, &ex, 5.0);
+                else if (problem == SMOOTH || problem == SMOOTHLIM)
+                    e = gf_sh1d_l1_difference(s, ref);
+                else
+                    e = dry_front_errors(s, problem, &ritter, &front);
+                printf("%s,%s,%zu,%.6e,%.6e,%.4e,%.3f\n", problem_names[problem], names[v], n, e, cpu,
+                       (double)n * (double)gf_sh1d_steps(s) / fmax(cpu, 1e-9), front);
                 gf_sh1d_free(s);
             }
     gf_sh1d_free(ref);

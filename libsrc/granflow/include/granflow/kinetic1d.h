@@ -7,8 +7,17 @@
  *            and the source g(u_i) h^{n+1}, g~ at u = 0 (eq. 24).
  *  Scheme 2: modified flux (eq. 25): both halves with the mean depth
  *            (h_i + h_{i+1})/2, upwinding only in u; for slow cells,
- *            |q| < |dt g(q) h^{n+1}|, the blended source
- *            (1 - mu) dt g~ (h_{i+1} + 2h_i + h_{i-1})/4, mu = -q/(dt g(q) h^{n+1}).
+ *            |q| < |dt g(q) h^n|, friction as an implicit Coulomb update of
+ *            the whole discrete force with the paper's weighted depth
+ *            hbar = (h_{i+1} + 2h_i + h_{i-1})/4:
+ *              q* = q - lam dF + dt g sin(zeta) hbar,
+ *              q^{n+1} = 0 if |q*| <= dt R hbar, else q* - sgn(q*) dt R hbar
+ *            (R the static bound per unit depth).  At rest this is the
+ *            paper's g~ (h_{i+1} + 2h_i + h_{i-1})/4 source exactly, so an
+ *            admissible profile stays at rest at any time step; the paper's
+ *            blend (1 - mu) dt g~ hbar, mu = -q/(dt g(q) h^{n+1}), drops q and
+ *            leaves the velocity part of the modified flux unopposed, which let
+ *            round-off grow at rest for Courant numbers above about 0.75.
  *  Scheme 3: coupled: Scheme 2 where the mass is slow (starting, stopping,
  *            at rest), Scheme 1 elsewhere.
  *
