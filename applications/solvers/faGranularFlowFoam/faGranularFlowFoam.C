@@ -72,6 +72,8 @@ int main(int argc, char *argv[])
     scalar tPressure = 0, tMomentum = 0, tContinuity = 0;
     scalar tSolveUs = 0, tSolveH = 0;   // linear solvers, inside momentum/continuity
     label nIterTotal = 0;
+    label nCappedSteps = 0;   // steps whose dt maxDeltaT capped below the maxCo step
+    label nSteps = 0;
 
     while (runTime.run())
     {
@@ -79,6 +81,7 @@ int main(int argc, char *argv[])
         #include "CourantNo.H"
         #include "setDeltaT.H"
         ++runTime;
+        ++nSteps;
         Info<< "Time = " << runTime.timeName() << "  deltaT = " << runTime.deltaTValue()
             << "  Courant " << CoNum << endl;
 
@@ -238,6 +241,12 @@ int main(int argc, char *argv[])
     Info<< nl << "CPU seconds: pressure " << tPressure << ", momentum " << tMomentum
         << " (linear solver " << tSolveUs << "), continuity " << tContinuity
         << " (linear solver " << tSolveH << "); outer iterations " << nIterTotal
-        << "; total " << runTime.elapsedCpuTime() << nl << "End" << nl << endl;
+        << "; total " << runTime.elapsedCpuTime() << nl;
+    if (nCappedSteps > 0)
+    {
+        Info<< "Time step capped by maxDeltaT (controlDict; the Courant number stayed below"
+            << " maxCo) in " << nCappedSteps << " of " << nSteps << " steps" << nl;
+    }
+    Info<< "End" << nl << endl;
     return 0;
 }

@@ -66,6 +66,45 @@ Foam::granflow::granularModel::granularModel(const dictionary& dict)
     const scalar one = 1, tiny = 1e-6;
     xi_ = readScalar("xi", 1e-6, 2, &one);
     hMin_ = readScalar("hMin", 0, 1, &tiny);
+    if (!(hMin_ > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid entry hMin " << hMin_ << ": the dry threshold must be > 0 (allowed (0, 1] m;"
+            << " faces thinner than hMin are dry, and the friction and pressure terms divide by h)"
+            << exit(FatalIOError);
+    }
+
+    // every entry must be one the model reads: a misspelled key is an error,
+    // not a silently used default
+    {
+        const wordList known
+        ({
+            "rho", "xi", "hMin", "earthPressure", "savageHutterCoeffs", "frictionLaw",
+            "lateralPressure", "centrifugalPressure", "lateralPressureFeedback", "staticFriction"
+        });
+        for (const word& key : dict.toc())
+        {
+            if (known.found(key))
+            {
+                continue;
+            }
+            // coefficients of any friction law may be kept: <law>Coeffs
+            gf_friction probe;
+            if
+            (
+                key.size() > 6 && key.ends_with("Coeffs") && dict.isDict(key)
+             && gf_friction_init(&probe, key.substr(0, key.size() - 6).c_str()) == GF_SUCCESS
+            )
+            {
+                continue;
+            }
+            FatalIOErrorInFunction(dict)
+                << "Unknown entry " << key << " in granularProperties; valid entries: rho, xi,"
+                << " hMin, earthPressure, savageHutterCoeffs, frictionLaw, <law>Coeffs (law: "
+                << gf_friction_names() << "), lateralPressure, centrifugalPressure,"
+                << " lateralPressureFeedback, staticFriction" << exit(FatalIOError);
+        }
+    }
 
     const word model(dict.getOrDefault<word>("earthPressure", "isotropic"));
     gf_earth_pressure_model m;
@@ -85,8 +124,32 @@ Foam::granflow::granularModel::granularModel(const dictionary& dict)
                 << " with phi and delta [deg]" << exit(FatalIOError);
         }
         const dictionary& c = dict.subDict("savageHutterCoeffs");
+        for (const word& key : c.toc())
+        {
+            if (key != "phi" && key != "delta")
+            {
+                FatalIOErrorInFunction(c)
+                    << "Unknown entry savageHutterCoeffs/" << key
+                    << "; valid entries: phi, delta [deg]" << exit(FatalIOError);
+            }
+        }
+        for (const word key : {"phi", "delta"})
+        {
+            if (!c.found(key))
+            {
+                FatalIOErrorInFunction(c)
+                    << "Missing entry savageHutterCoeffs/" << key << " [deg]" << exit(FatalIOError);
+            }
+        }
         phi = c.get<scalar>("phi");
         delta = c.get<scalar>("delta");
+        // the ranges in the unit of the entries (the library checks radians)
+        if (!(phi > 0 && phi < 90) || !(delta >= 0 && delta < 90))
+        {
+            FatalIOErrorInFunction(c)
+                << "Invalid entries savageHutterCoeffs phi " << phi << " deg, delta " << delta
+                << " deg: allowed 0 < phi < 90 deg, 0 <= delta < 90 deg" << exit(FatalIOError);
+        }
     }
     const scalar deg = constant::mathematical::pi/180;
     if (gf_earth_pressure_init(&earthPressure_, m, phi*deg, delta*deg) != GF_SUCCESS)
