@@ -35,6 +35,7 @@ Usage
 #include "fullOperators.H"
 #include "relaxConsistent.H"
 #include "fixFacesAtRest.H"
+#include "granularBoundaries.H"
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -82,6 +83,7 @@ int main(int argc, char *argv[])
         #include "setDeltaT.H"
         ++runTime;
         ++nSteps;
+        boundaries.setInflow(runTime.value(), h, Us);
         Info<< "Time = " << runTime.timeName() << "  deltaT = " << runTime.deltaTValue()
             << "  Courant " << CoNum << endl;
 
@@ -155,6 +157,7 @@ int main(int argc, char *argv[])
             resUs = gSum(mag(Us.primitiveField() - UsPrev))
                    /max(gSum(mag(Us.primitiveField())), VSMALL);
             phis = fac::interpolate(Us) & aMesh.Le();
+            boundaries.constrainFlux(phis);
             tMomentum += timer.elapsedCpuTime() - t0;
 
             // ---- continuity, eq. (30)/(52), implicit ---------------------------
@@ -185,6 +188,7 @@ int main(int argc, char *argv[])
             faScalarMatrix hEqn(fam::ddt(h) + fam::div(phis, h));
             hEqn.solve();
             phi2s = hEqn.flux();
+            boundaries.accumulate(phi2s, runTime.deltaTValue(), runTime.deltaT0Value());
             // Negative thickness: round-off (~1e-26 m) at dry edges, and where
             // strongly converging flow makes the implicit upwind matrix lose
             // diagonal dominance (seen to -2.6e-6 m on the twisted slope).
@@ -223,10 +227,14 @@ int main(int argc, char *argv[])
         if (runTime.writeTime())
         {
             const scalar mass = gSum(h.primitiveField()*aMesh.S().field());
+            const scalar imbalance = mass + boundaries.netOut() - mass0;
             Info<< "granflow: t = " << runTime.timeName()
                 << " s, wall " << runTime.elapsedClockTime() << " s, mass " << mass
-                << " m3 (change " << mass - mass0 << " m3, inflow included"
-                << "), max h " << gMax(h.primitiveField())
+                << " m3, mass balance: volume + outflow - inflow - initial = " << imbalance
+                << " m3 (relative " << imbalance/max(max(mass0, mass), VSMALL)
+                << ")" << nl;
+            boundaries.report(Info);
+            Info<< "    max h " << gMax(h.primitiveField())
                 << " m, min h " << gMin(h.primitiveField())
                 << " m, max |Us| " << gMax(mag(Us.primitiveField())) << " m/s";
             if (model.staticFriction())

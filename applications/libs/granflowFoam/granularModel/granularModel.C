@@ -80,7 +80,8 @@ Foam::granflow::granularModel::granularModel(const dictionary& dict)
         const wordList known
         ({
             "rho", "xi", "hMin", "earthPressure", "savageHutterCoeffs", "frictionLaw",
-            "lateralPressure", "centrifugalPressure", "lateralPressureFeedback", "staticFriction"
+            "lateralPressure", "centrifugalPressure", "lateralPressureFeedback", "staticFriction",
+            "boundaries"
         });
         for (const word& key : dict.toc())
         {
@@ -102,7 +103,7 @@ Foam::granflow::granularModel::granularModel(const dictionary& dict)
                 << "Unknown entry " << key << " in granularProperties; valid entries: rho, xi,"
                 << " hMin, earthPressure, savageHutterCoeffs, frictionLaw, <law>Coeffs (law: "
                 << gf_friction_names() << "), lateralPressure, centrifugalPressure,"
-                << " lateralPressureFeedback, staticFriction" << exit(FatalIOError);
+                << " lateralPressureFeedback, staticFriction, boundaries" << exit(FatalIOError);
         }
     }
 
