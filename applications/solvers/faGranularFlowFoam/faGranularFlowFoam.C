@@ -74,6 +74,9 @@ int main(int argc, char *argv[])
     scalar tSolveUs = 0, tSolveH = 0;   // linear solvers, inside momentum/continuity
     label nIterTotal = 0;
     label nCappedSteps = 0;   // steps whose dt maxDeltaT capped below the maxCo step
+    scalar hMinBeforeFix = GREAT;   // smallest h of the continuity solve, before the safety net
+    label nNegativeSteps = 0;       // steps where the safety net set negative h to 0
+    scalar negativeVolume = 0;      // volume it redistributed [m3]
     label nSteps = 0;
 
     while (runTime.run())
@@ -196,11 +199,14 @@ int main(int argc, char *argv[])
             // one factor that restores the volume, so h >= 0 and mass is
             // conserved to round-off; events above 1e-8 max(h) are reported.
             const scalar hNeg = -gMin(h.primitiveField());
+            hMinBeforeFix = min(hMinBeforeFix, -hNeg);
             if (hNeg > 0)
             {
+                ++nNegativeSteps;
                 scalarField& hf = h.primitiveFieldRef();
                 const scalarField& S = aMesh.S().field();
                 const scalar deficit = -gSum(min(hf, scalar(0))*S);
+                negativeVolume += deficit;
                 hf = max(hf, scalar(0));
                 const scalar positive = gSum(hf*S);
                 if (positive > deficit && positive > VSMALL)
@@ -250,6 +256,9 @@ int main(int argc, char *argv[])
         << " (linear solver " << tSolveUs << "), continuity " << tContinuity
         << " (linear solver " << tSolveH << "); outer iterations " << nIterTotal
         << "; total " << runTime.elapsedCpuTime() << nl;
+    Info<< "Thickness safety net: smallest h of the continuity solves " << hMinBeforeFix
+        << " m; negative h set to 0 in " << nNegativeSteps << " of " << nSteps
+        << " steps, volume redistributed " << negativeVolume << " m3" << nl;
     if (nCappedSteps > 0)
     {
         Info<< "Time step capped by maxDeltaT (controlDict; the Courant number stayed below"
