@@ -25,7 +25,6 @@
 #include "granflow/granflow.h"
 #include "granflow/sh1d.h"
 
-#define PI 3.14159265358979323846
 
 static void rp_init(double x, void *c, double *h, double *u)
 {
@@ -36,8 +35,8 @@ static void rp_init(double x, void *c, double *h, double *u)
 static void smooth_init(double x, void *c, double *h, double *u)
 {
     (void)c;
-    *h = 1 + 0.2 * sin(2 * PI * x);
-    *u = 1 + 0.1 * cos(2 * PI * x);
+    *h = 1 + 0.2 * sin(2 * GF_PI * x);
+    *u = 1 + 0.1 * cos(2 * GF_PI * x);
 }
 
 enum { RIEMANN, SMOOTH, SMOOTHLIM, RITTER, CAP, NPROBLEMS };
@@ -74,14 +73,14 @@ static void configure(gf_sh1d_config *c, int problem, int variant, size_t n)
     } else {
         c->x_min = 0;
         c->x_max = 1;
-        c->zeta = 35 * PI / 180;
+        c->zeta = 35 * GF_PI / 180;
         c->bc_left = c->bc_right = GF_BC_PERIODIC;
         if (problem == SMOOTH) {
             c->limiter = GF_LIMITER_NONE;
             c->velocity_limiter = 0;
         }
         gf_friction_init(&c->friction, "coulomb");
-        gf_friction_set(&c->friction, "mu", tan(PI / 6));
+        gf_friction_set(&c->friction, "mu", tan(GF_PI / 6));
         gf_friction_set(&c->friction, "u0", 0.0);
     }
     if (variant < 3)

@@ -9,17 +9,17 @@
 #include "../gf_test.h"
 
 #include "granflow/earth_pressure.h"
+#include "granflow/constants.h"
 
-#define DEG (3.14159265358979323846 / 180.0)
 
 static void k_equals_reference_values(void **state)
 {
     (void)state;
     double ka, kp;
-    assert_int_equal(gf_earth_pressure_coefficients(37 * DEG, 30 * DEG, &ka, &kp), GF_SUCCESS);
+    assert_int_equal(gf_earth_pressure_coefficients(37 * GF_DEG, 30 * GF_DEG, &ka, &kp), GF_SUCCESS);
     assert_close(ka, 0.922962196580577, 1e-13);
     assert_close(kp, 3.34841262912472, 1e-13);
-    assert_int_equal(gf_earth_pressure_coefficients(30 * DEG, 23 * DEG, &ka, &kp), GF_SUCCESS);
+    assert_int_equal(gf_earth_pressure_coefficients(30 * GF_DEG, 23 * GF_DEG, &ka, &kp), GF_SUCCESS);
     assert_close(ka, 0.76288361382812, 1e-13);
     assert_close(kp, 2.57044971950521, 1e-13);
 }
@@ -31,8 +31,8 @@ static void k_roots_satisfy_vieta_relations(void **state)
     for (double phi = 5; phi < 85; phi += 7)
         for (double del = 0; del <= phi; del += 3) {
             double ka, kp;
-            assert_int_equal(gf_earth_pressure_coefficients(phi * DEG, del * DEG, &ka, &kp), GF_SUCCESS);
-            const double s2p = 1 / pow(cos(phi * DEG), 2), s2d = 1 / pow(cos(del * DEG), 2);
+            assert_int_equal(gf_earth_pressure_coefficients(phi * GF_DEG, del * GF_DEG, &ka, &kp), GF_SUCCESS);
+            const double s2p = 1 / pow(cos(phi * GF_DEG), 2), s2d = 1 / pow(cos(del * GF_DEG), 2);
             assert_close(ka + kp, 4 * s2p - 2, 1e-9 * s2p);
             assert_close(ka * kp, 1 - 4 * s2p + 4 * s2p * s2d, 1e-8 * s2p * s2p);
             assert_true(ka <= kp);
@@ -43,7 +43,7 @@ static void k_act_equals_k_pass_when_delta_equals_phi(void **state)
 {
     (void)state;
     double ka, kp;
-    assert_int_equal(gf_earth_pressure_coefficients(30 * DEG, 30 * DEG, &ka, &kp), GF_SUCCESS);
+    assert_int_equal(gf_earth_pressure_coefficients(30 * GF_DEG, 30 * GF_DEG, &ka, &kp), GF_SUCCESS);
     assert_close(ka, 5.0 / 3.0, 1e-14); /* 2 sec^2(30) - 1 */
     assert_close(kp, 5.0 / 3.0, 1e-14);
 }
@@ -52,12 +52,12 @@ static void delta_above_phi_is_rejected_with_reason(void **state)
 {
     (void)state;
     double ka = -7, kp = -7;
-    assert_int_equal(gf_earth_pressure_coefficients(30 * DEG, 35 * DEG, &ka, &kp), GF_EPHYS);
+    assert_int_equal(gf_earth_pressure_coefficients(30 * GF_DEG, 35 * GF_DEG, &ka, &kp), GF_EPHYS);
     assert_non_null(strstr(gf_error_detail(), "exceeds internal friction angle"));
     assert_non_null(strstr(gf_error_detail(), "complex"));
     assert_close(ka, -7, 0); /* outputs untouched */
     gf_earth_pressure ep;
-    assert_int_equal(gf_earth_pressure_init(&ep, GF_EARTH_PRESSURE_SAVAGE_HUTTER, 30 * DEG, 35 * DEG),
+    assert_int_equal(gf_earth_pressure_init(&ep, GF_EARTH_PRESSURE_SAVAGE_HUTTER, 30 * GF_DEG, 35 * GF_DEG),
                      GF_EPHYS);
     assert_string_not_equal(gf_strerror(GF_EPHYS), "");
 }
@@ -69,7 +69,7 @@ static void bad_angles_are_rejected(void **state)
     assert_int_equal(gf_earth_pressure_coefficients(NAN, 0.1, &ka, &kp), GF_ENONFINITE);
     assert_int_equal(gf_earth_pressure_coefficients(0.5, NAN, &ka, &kp), GF_ENONFINITE);
     assert_int_equal(gf_earth_pressure_coefficients(0.0, 0.0, &ka, &kp), GF_EDOM);
-    assert_int_equal(gf_earth_pressure_coefficients(95 * DEG, 0.1, &ka, &kp), GF_EDOM);
+    assert_int_equal(gf_earth_pressure_coefficients(95 * GF_DEG, 0.1, &ka, &kp), GF_EDOM);
     assert_non_null(strstr(gf_error_detail(), "phi"));
     assert_int_equal(gf_earth_pressure_coefficients(0.5, -0.1, &ka, &kp), GF_EDOM);
     assert_int_equal(gf_earth_pressure_coefficients(0.5, 0.1, NULL, &kp), GF_EINVAL);
@@ -79,7 +79,7 @@ static void k_switches_active_passive_on_sign_of_dudx(void **state)
 {
     (void)state;
     gf_earth_pressure ep;
-    assert_int_equal(gf_earth_pressure_init(&ep, GF_EARTH_PRESSURE_SAVAGE_HUTTER, 37 * DEG, 30 * DEG),
+    assert_int_equal(gf_earth_pressure_init(&ep, GF_EARTH_PRESSURE_SAVAGE_HUTTER, 37 * GF_DEG, 30 * GF_DEG),
                      GF_SUCCESS);
     assert_close(gf_earth_pressure_k(&ep, 0.3), 0.922962196580577, 1e-13);
     assert_close(gf_earth_pressure_k(&ep, 0.0), 0.922962196580577, 1e-13);

@@ -8,13 +8,13 @@
 #include "../gf_test.h"
 
 #include "granflow/friction.h"
+#include "granflow/constants.h"
 
-#define DEG (3.14159265358979323846 / 180.0)
 
 /* h = 0.5 m, |u| = 2 m/s, rho = 1500, p_b = rho g cos(35 deg) h */
 static gf_friction_state reference_state(void)
 {
-    gf_friction_state s = {0.5, 2.0, 1500 * 9.81 * cos(35 * DEG) * 0.5, 1500.0, 9.81};
+    gf_friction_state s = {0.5, 2.0, 1500 * 9.81 * cos(35 * GF_DEG) * 0.5, 1500.0, 9.81};
     return s;
 }
 
@@ -56,12 +56,12 @@ static void coulomb_chezy_voellmy_none(void **state)
     gf_friction_result r;
     gf_friction_state s = reference_state();
     gf_friction_init(&f, "coulomb");
-    gf_friction_set(&f, "mu", tan(30 * DEG));
+    gf_friction_set(&f, "mu", tan(30 * GF_DEG));
     gf_friction_eval(&f, &s, &r);
-    assert_close(r.tau, tan(30 * DEG) * 9.81 * cos(35 * DEG) * 0.5, 1e-12);
+    assert_close(r.tau, tan(30 * GF_DEG) * 9.81 * cos(35 * GF_DEG) * 0.5, 1e-12);
     s.speed = 0.0; /* exact Coulomb at rest: static bound, infinite stiffness */
     gf_friction_eval(&f, &s, &r);
-    assert_close(r.tau, tan(30 * DEG) * 9.81 * cos(35 * DEG) * 0.5, 1e-12);
+    assert_close(r.tau, tan(30 * GF_DEG) * 9.81 * cos(35 * GF_DEG) * 0.5, 1e-12);
     assert_true(isinf(r.nu));
     s = reference_state();
     gf_friction_init(&f, "chezy"); /* C = 40 default, eq. 71 */

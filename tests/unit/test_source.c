@@ -8,30 +8,30 @@
 #include "../gf_test.h"
 
 #include "granflow/source.h"
+#include "granflow/constants.h"
 
-#define DEG (3.14159265358979323846 / 180.0)
 
 static void driving_matches_eq2_with_curvature(void **state)
 {
     (void)state;
-    const double mu = tan(30 * DEG);
+    const double mu = tan(30 * GF_DEG);
     /* zeta = 35 deg, chi*kappa = 0.1, |u| = 1.5 */
-    assert_close(gf_sh_driving(1.0, 35 * DEG, 0.1, mu, 1.5), -0.0292650274941013, 1e-14);
-    assert_close(gf_sh_driving(1.0, 35 * DEG, 0.1, mu, -1.5), 1.17641790019619, 1e-14);
+    assert_close(gf_sh_driving(1.0, 35 * GF_DEG, 0.1, mu, 1.5), -0.0292650274941013, 1e-14);
+    assert_close(gf_sh_driving(1.0, 35 * GF_DEG, 0.1, mu, -1.5), 1.17641790019619, 1e-14);
 }
 
 static void friction_vanishes_on_lift_off(void **state)
 {
     (void)state;
     /* strongly convex bed: cos(zeta) + c u^2 < 0 -> max(0, .) = 0 */
-    assert_close(gf_sh_driving(1.0, 35 * DEG, -10.0, 0.6, 1.0), sin(35 * DEG), 1e-15);
+    assert_close(gf_sh_driving(1.0, 35 * GF_DEG, -10.0, 0.6, 1.0), sin(35 * GF_DEG), 1e-15);
     assert_close(gf_sh_normal_acceleration(9.81, 0.2, -10.0, 1.0), 0.0, 0);
 }
 
 static void dimensional_form_scales_with_g(void **state)
 {
     (void)state;
-    const double g = 9.81, z = 20 * DEG, mu = 0.4, kap = 0.05, u = 3.0;
+    const double g = 9.81, z = 20 * GF_DEG, mu = 0.4, kap = 0.05, u = 3.0;
     const double expect = g * sin(z) - mu * (g * cos(z) + kap * u * u);
     assert_close(gf_sh_driving(g, z, kap, mu, u), expect, 1e-13);
 }
@@ -39,7 +39,7 @@ static void dimensional_form_scales_with_g(void **state)
 static void static_source_clamps_to_coulomb_bound(void **state)
 {
     (void)state;
-    const double z = 10 * DEG, mu = tan(20 * DEG);
+    const double z = 10 * GF_DEG, mu = tan(20 * GF_DEG);
     const double R = cos(z) * mu, gs = sin(z);
     assert_close(gf_sh_static_bound(1.0, z, mu), R, 1e-15);
     /* admissible: returned unchanged */

@@ -9,8 +9,8 @@
 #include "../gf_test.h"
 
 #include "granflow/topography.h"
+#include "granflow/constants.h"
 
-#define DEG (3.14159265358979323846 / 180.0)
 
 /* rkdg paper, appendix */
 static void appendix_mapping(double zeta0, double x, double *xb, double *yb)
@@ -36,15 +36,15 @@ static void chute_inclination_and_curvature(void **state)
     (void)state;
     gf_topography *t;
     double z, k;
-    assert_int_equal(gf_topography_chute_alloc(35 * DEG, 10 * DEG, 17.5, 21.5, &t), GF_SUCCESS);
+    assert_int_equal(gf_topography_chute_alloc(35 * GF_DEG, 10 * GF_DEG, 17.5, 21.5, &t), GF_SUCCESS);
     gf_topography_eval(t, 3.0, &z, &k);
-    assert_close(z, 35 * DEG, 1e-15);
+    assert_close(z, 35 * GF_DEG, 1e-15);
     assert_close(k, 0.0, 0);
     gf_topography_eval(t, 19.5, &z, &k); /* eq. 74: 35 - 6.25 (x - 17.5) deg */
-    assert_close(z, (35 - 6.25 * 2.0) * DEG, 1e-14);
-    assert_close(k, 6.25 * DEG, 1e-14);
+    assert_close(z, (35 - 6.25 * 2.0) * GF_DEG, 1e-14);
+    assert_close(k, 6.25 * GF_DEG, 1e-14);
     gf_topography_eval(t, 25.0, &z, &k);
-    assert_close(z, 10 * DEG, 1e-15);
+    assert_close(z, 10 * GF_DEG, 1e-15);
     assert_close(k, 0.0, 0);
     gf_topography_free(t);
 }
@@ -54,14 +54,14 @@ static void chute_position_equals_rkdg_appendix(void **state)
     (void)state;
     for (double z0d = 35; z0d <= 40; z0d += 5) {
         gf_topography *t;
-        assert_int_equal(gf_topography_chute_alloc(z0d * DEG, 0.0, 17.5, 21.5, &t), GF_SUCCESS);
+        assert_int_equal(gf_topography_chute_alloc(z0d * GF_DEG, 0.0, 17.5, 21.5, &t), GF_SUCCESS);
         double z, k;
         gf_topography_eval(t, 18.0, &z, &k);
-        assert_close(k, z0d * DEG / 4.0, 1e-14); /* kappa = zeta0/4 (rkdg section 4) */
+        assert_close(k, z0d * GF_DEG / 4.0, 1e-14); /* kappa = zeta0/4 (rkdg section 4) */
         for (double x = 0; x <= 30; x += 0.37) {
             double X, Z, xb, yb;
             assert_int_equal(gf_topography_position(t, x, &X, &Z), GF_SUCCESS);
-            appendix_mapping(z0d * DEG, x, &xb, &yb);
+            appendix_mapping(z0d * GF_DEG, x, &xb, &yb);
             assert_close(X, xb, 1e-12);
             assert_close(Z, yb, 1e-12);
         }
@@ -74,7 +74,7 @@ static void tabulated_linear_profile_is_exact(void **state)
     (void)state;
     /* zeta = a - b x, sampled; natural cubic spline reproduces it; the bed is
      * a circular arc: X = (sin a - sin zeta)/b, Z = (cos a - cos zeta)/b. */
-    const double a = 40 * DEG, b = 0.03;
+    const double a = 40 * GF_DEG, b = 0.03;
     double x[31], zeta[31];
     for (int i = 0; i < 31; ++i) {
         x[i] = i;

@@ -18,8 +18,6 @@
 #include "granflow/granflow.h"
 #include "granflow/sh1d.h"
 
-#define DEG (3.14159265358979323846 / 180.0)
-#define PI 3.14159265358979323846
 
 static gf_sh1d *make(const gf_sh1d_type *t, const gf_sh1d_config *c, gf_sh1d_initial_fn f, void *ctx)
 {
@@ -65,7 +63,7 @@ static void kinetic_paper_config(gf_sh1d_config *c, const gf_sh1d_type *t, int v
     c->epsilon = 0.4;
     c->bc_left = c->bc_right = GF_BC_WALL;
     c->dt_fixed = 0.001;
-    coulomb(c, PI / 10);
+    coulomb(c, GF_PI / 10);
     set_variant(c, t, variant);
 }
 
@@ -78,8 +76,8 @@ static void kinetic_paper_config(gf_sh1d_config *c, const gf_sh1d_type *t, int v
 static void smooth_init(double x, void *ctx, double *h, double *u)
 {
     (void)ctx;
-    *h = 1 + 0.2 * sin(2 * PI * x);
-    *u = 1 + 0.1 * cos(2 * PI * x);
+    *h = 1 + 0.2 * sin(2 * GF_PI * x);
+    *u = 1 + 0.1 * cos(2 * GF_PI * x);
 }
 static gf_sh1d *smooth_run(int degree, size_t n)
 {
@@ -88,12 +86,12 @@ static gf_sh1d *smooth_run(int degree, size_t n)
     c.n_cells = n;
     c.x_min = 0;
     c.x_max = 1;
-    c.zeta = 35 * DEG;
+    c.zeta = 35 * GF_DEG;
     c.bc_left = c.bc_right = GF_BC_PERIODIC;
     c.degree = degree;
     c.limiter = GF_LIMITER_NONE;
     c.velocity_limiter = 0;
-    coulomb(&c, 30 * DEG);
+    coulomb(&c, 30 * GF_DEG);
     gf_sh1d *s = make(gf_sh1d_rkdg, &c, smooth_init, NULL);
     advance(s, 0.1);
     return s;
@@ -195,7 +193,7 @@ static void pile_stays(const gf_sh1d_type *t, int variant, double fraction, cons
 {
     gf_sh1d_config c;
     kinetic_paper_config(&c, t, variant);
-    double slope = fraction * tan(PI / 10) / 0.4;
+    double slope = fraction * tan(GF_PI / 10) / 0.4;
     gf_sh1d *s = make(t, &c, pile_init, &slope);
     double h0[200], u0[200], h[200], u[200];
     gf_sh1d_means(s, h0, u0);
@@ -224,7 +222,7 @@ static double pile_run(int scheme, double cfl, double fraction, double t1, doubl
     kinetic_paper_config(&c, gf_sh1d_kinetic, scheme);
     c.dt_fixed = 0.0;
     c.cfl = cfl;
-    double slope = fraction * tan(PI / 10) / 0.4;
+    double slope = fraction * tan(GF_PI / 10) / 0.4;
     gf_sh1d *s = make(gf_sh1d_kinetic, &c, pile_init, &slope);
     double h0[200], u0[200], h[200], u[200];
     advance(s, t1);
@@ -511,9 +509,9 @@ static double front_error(int problem, const gf_sh1d_type *t, int variant, size_
     if (problem == RITTER) /* the reservoir is at rest at x = 0 until t = 6 */
         c.bc_left = GF_BC_WALL;
     if (problem == INCLINE) { /* the reservoir flows in at u = a t through x = 0 */
-        c.zeta = 35 * DEG;
-        coulomb(&c, 30 * DEG);
-        a = sin(c.zeta) - tan(30 * DEG) * cos(c.zeta);
+        c.zeta = 35 * GF_DEG;
+        coulomb(&c, 30 * GF_DEG);
+        a = sin(c.zeta) - tan(30 * GF_DEG) * cos(c.zeta);
     }
     set_variant(&c, t, variant);
     gf_sh1d *s = make(t, &c, problem == CAP ? cap_init : dam_one, &cap);
@@ -653,10 +651,10 @@ static void p2_beats_p1_with_the_limiters_on(void **state)
             c.n_cells = n;
             c.x_min = 0;
             c.x_max = 1;
-            c.zeta = 35 * DEG;
+            c.zeta = 35 * GF_DEG;
             c.bc_left = c.bc_right = GF_BC_PERIODIC;
             c.degree = k;
-            coulomb(&c, 30 * DEG);
+            coulomb(&c, 30 * GF_DEG);
             gf_sh1d *s = make(gf_sh1d_rkdg, &c, smooth_init, NULL);
             advance(s, 0.1);
             e[k] = gf_sh1d_l1_difference(s, ref);
@@ -688,7 +686,7 @@ static void semicircle(double x, void *ctx, double *h, double *u)
 static void run_case(double zeta0, double phi, double delta, double *hmax, double *t_rest, double *dm)
 {
     gf_topography *topo;
-    assert_int_equal(gf_topography_chute_alloc(zeta0 * DEG, 0.0, 17.5, 21.5, &topo), GF_SUCCESS);
+    assert_int_equal(gf_topography_chute_alloc(zeta0 * GF_DEG, 0.0, 17.5, 21.5, &topo), GF_SUCCESS);
     gf_sh1d_config c;
     gf_sh1d_config_init(&c);
     c.n_cells = 256;
@@ -697,8 +695,8 @@ static void run_case(double zeta0, double phi, double delta, double *hmax, doubl
     c.limiter = GF_LIMITER_MINMOD; /* the paper's eq. 13 with gamma = 0.5, strict */
     c.tvb_m = 0.0;
     assert_int_equal(gf_earth_pressure_init(&c.earth_pressure, GF_EARTH_PRESSURE_SAVAGE_HUTTER,
-                                            phi * DEG, delta * DEG), GF_SUCCESS);
-    coulomb(&c, delta * DEG);
+                                            phi * GF_DEG, delta * GF_DEG), GF_SUCCESS);
+    coulomb(&c, delta * GF_DEG);
     gf_sh1d *s = make(gf_sh1d_rkdg, &c, semicircle, NULL);
     const double m0 = gf_sh1d_mass(s);
     *t_rest = -1;

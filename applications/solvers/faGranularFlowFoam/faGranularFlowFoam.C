@@ -94,89 +94,9 @@ int main(int argc, char *argv[])
         label corr = 0;
         for (corr = 1; corr <= nOuterCorr; ++corr)
         {
-            // ---- basal pressure, eq. (33)/(50), explicit --------------------
-            scalar t0 = timer.elapsedCpuTime();
-            if (!model.isotropic())
-            {
-                model.earthPressure(fac::div(phis), K);
-            }
-            {
-                areaScalarField pbNew(-rho*h*(g & n));
-                if (model.centrifugalPressure())
-                {
-                    pbNew += rho*xi*(n & gfDivFull(phi2s, Us));
-                }
-                if (model.lateralPressureFeedback())
-                {
-                    pbNew += 0.5*(n & gfGradFull(K*h*pb));
-                }
-                pb = pbNew;
-                forAll(h, facei)
-                {
-                    if (h[facei] < model.hMin())
-                    {
-                        pb[facei] = 0;
-                    }
-                }
-                pb.correctBoundaryConditions();
-            }
-            if (model.frictionOn())
-            {
-                model.friction().evaluate(h, Us, pb, model.rho(), mag(g.value()), model.hMin(), tauB, nuB);
-            }
-            tPressure += timer.elapsedCpuTime() - t0;
-
-            // ---- momentum, eq. (31)/(51), implicit -----------------------------
-            t0 = timer.elapsedCpuTime();
-            faVectorMatrix UsEqn
-            (
-                fam::ddt(h, Us)
-              + xi*fam::div(phi2s, Us)
-             ==
-                h*g
-              + n*pb/rho
-            );
-            if (model.lateralPressure())
-            {
-                UsEqn += gfGradFull(K*h*pb)/(2*rho);
-            }
-            if (model.frictionOn())
-            {
-                UsEqn += fam::Sp(nuB, Us);
-            }
-            #include "restFaces.H"
-            nHeldLast = nHeld;
-            relaxConsistent(UsEqn);
-            fixFacesAtRest(UsEqn, atRest);
-            const vectorField UsPrev(Us.primitiveField());
-            const scalar tls = timer.elapsedCpuTime();
-            UsEqn.solve();
-            tSolveUs += timer.elapsedCpuTime() - tls;
-            Us -= n*(n & Us);   // keep Us tangential (eq. 28)
-            Us.correctBoundaryConditions();
-            // Us convergence: relative L1 change over the outer iteration
-            // (the initial residual of the 3-component system keeps the
-            // level of the normal part removed above and cannot be used)
-            resUs = gSum(mag(Us.primitiveField() - UsPrev))
-                   /max(gSum(mag(Us.primitiveField())), VSMALL);
-            phis = fac::interpolate(Us) & aMesh.Le();
-            boundaries.constrainFlux(phis);
-            tMomentum += timer.elapsedCpuTime() - t0;
-
-            // ---- continuity, eq. (30)/(52), implicit ---------------------------
-            t0 = timer.elapsedCpuTime();
-            faScalarMatrix hEqn
-            (
-                fam::ddt(h)
-              + fam::div(phis, h)
-            );
-            relaxConsistent(hEqn);
-            const scalar tlh = timer.elapsedCpuTime();
-            const SolverPerformance<scalar> spH = hEqn.solve();
-            tSolveH += timer.elapsedCpuTime() - tlh;
-            resH = spH.initialResidual();
-            phi2s = hEqn.flux();
-            tContinuity += timer.elapsedCpuTime() - t0;
+            #include "pbEqn.H"
+            #include "UsEqn.H"
+            #include "hEqn.H"
 
             if (corr > 1 && resUs < tolUs && resH < tolH)
             {

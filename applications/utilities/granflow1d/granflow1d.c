@@ -50,7 +50,6 @@
 #include "granflow/granflow.h"
 #include "granflow/sh1d.h"
 
-#define DEG (3.14159265358979323846 / 180.0)
 #define MAXE 256
 #define MAXT 64
 
@@ -214,8 +213,8 @@ static void initial(double x, void *ctx, double *h, double *u)
         break;
     case SINUSOID: /* kinetic paper, section 4, fifth test */
         *h = (x > 0.6 && x < 1.6)
-                 ? fmax(0.9 * sin(3.14159265358979323846 * (x - 0.6)) -
-                            0.3 * sin(2 * 3.14159265358979323846 * (x - 0.6)), 0.1)
+                 ? fmax(0.9 * sin(GF_PI * (x - 0.6)) -
+                            0.3 * sin(2 * GF_PI * (x - 0.6)), 0.1)
                  : 0.1;
         break;
     default: { /* linear interpolation in the table, constant outside */
@@ -383,7 +382,7 @@ int main(int argc, char **argv)
         die("[model] earth_pressure = savageHutter needs phi and delta");
     {
         gf_status st = gf_earth_pressure_init(&c.earth_pressure, (gf_earth_pressure_model)ep,
-                                              phi * DEG, delta * DEG);
+                                              phi * GF_DEG, delta * GF_DEG);
         if (st)
             die("[model] phi = %g, delta = %g: %s", phi, delta, gf_error_detail());
     }
@@ -394,7 +393,7 @@ int main(int argc, char **argv)
         if (isnan(delta) && !find(&d, "friction", "mu"))
             die("[model] friction = coulomb needs [model] delta or [friction] mu");
         if (!isnan(delta))
-            lib_check(gf_friction_set(&c.friction, "mu", tan(delta * DEG)), "[model] delta");
+            lib_check(gf_friction_set(&c.friction, "mu", tan(delta * GF_DEG)), "[model] delta");
     }
     for (int i = 0; i < d.n; ++i)
         if (!strcmp(d.e[i].section, "friction")) {
@@ -410,13 +409,13 @@ int main(int argc, char **argv)
     const int tt = get_choice(&d, "topography", "type", "flat", topo_names);
     gf_topography *topo = NULL;
     if (tt == 0) {
-        c.zeta = get_num(&d, "topography", "zeta", 0.0, -89.9, 89.9) * DEG;
+        c.zeta = get_num(&d, "topography", "zeta", 0.0, -89.9, 89.9) * GF_DEG;
     } else if (tt == 1) {
         const double z0 = get_num(&d, "topography", "zeta0", NAN, -89.9, 89.9);
         if (isnan(z0))
             die("[topography] type = chute needs zeta0");
-        lib_check(gf_topography_chute_alloc(z0 * DEG,
-                                            get_num(&d, "topography", "zeta1", 0.0, -89.9, 89.9) * DEG,
+        lib_check(gf_topography_chute_alloc(z0 * GF_DEG,
+                                            get_num(&d, "topography", "zeta1", 0.0, -89.9, 89.9) * GF_DEG,
                                             get_num(&d, "topography", "x1", 17.5, -1e300, 1e300),
                                             get_num(&d, "topography", "x2", 21.5, -1e300, 1e300), &topo),
                   "[topography]");
@@ -429,7 +428,7 @@ int main(int argc, char **argv)
         double *col[2];
         const size_t n = read_csv(path, cols, nonneg, 2, col);
         for (size_t i = 0; i < n; ++i)
-            col[1][i] *= DEG;
+            col[1][i] *= GF_DEG;
         lib_check(gf_topography_tabulated_alloc(col[0], col[1], n, &topo), "[topography] file");
         free(col[0]);
         free(col[1]);

@@ -425,10 +425,10 @@ static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
 {
     dg *d = s->impl;
     const int M = d->m;
-    static const double x5[5] = {-0.906179845938664, -0.538469310105683, 0.0, 0.538469310105683,
-                                 0.906179845938664};
-    static const double w5[5] = {0.236926885056189, 0.478628670499366, 0.568888888888889,
-                                 0.478628670499366, 0.236926885056189};
+    double x5[5], w5[5];
+    gf_status gst = gf_gauss_legendre5(x5, w5);
+    if (gst)
+        return gst;
     for (size_t c = 1; c <= s->n; ++c) {
         const double xc = gf_sh1d_cell_centre(s, c - 1);
         for (int m = 0; m < M; ++m) {

@@ -2,10 +2,8 @@
 #ifndef GRANFLOW_INTERNAL_H
 #define GRANFLOW_INTERNAL_H
 
+#include "granflow/constants.h"
 #include "granflow/status.h"
-
-#define GF_PI 3.14159265358979323846
-#define GF_RAD2DEG (180.0 / GF_PI)
 
 /* Record a formatted detail message for gf_error_detail() and return status. */
 gf_status gf_fail(gf_status status, const char *fmt, ...)

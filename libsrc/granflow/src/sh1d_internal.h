@@ -41,6 +41,10 @@ double gf_sh1d_friction(const gf_sh1d *s, double h, double u, double zeta, doubl
  * speed 0 (mu h g cos(zeta) for Coulomb). */
 double gf_sh1d_static_friction(const gf_sh1d *s, double h, double zeta);
 
+/* The 5-point Gauss–Legendre rule on [-1, 1] (weights sum to 2), from GSL's
+ * glfixed table: initial projections and L1 differences. */
+gf_status gf_gauss_legendre5(double x[5], double w[5]);
+
 /* Velocity q/h, 0 where h <= h_eps. */
 static inline double gf_sh1d_velocity(const gf_sh1d *s, double h, double q)
 {

@@ -2,6 +2,7 @@
 #ifndef GRANFLOW_GRANFLOW_H
 #define GRANFLOW_GRANFLOW_H
 
+#include "granflow/constants.h"
 #include "granflow/status.h"
 #include "granflow/earth_pressure.h"
 #include "granflow/source.h"
