@@ -21,7 +21,11 @@ Description
     eq. 46); time step from the Courant number (eqs. 47-48).  Dry faces
     (h < hMin) get Us = 0 on the matrix level, and so do faces that static
     friction holds when staticFriction is on (restFaces.H).  Friction (nu) and earth
-    pressure (K) come from libgranflow.
+    pressure (K) come from libgranflow.  Every patch is a wall, outflow,
+    symmetry or inflow (hydrograph) boundary (granularBoundaries.H), and the
+    mass balance (volume + outflow - inflow = initial) is printed at every
+    written time; the smallest h before the thickness safety net, the steps
+    where it acted and any time step capped by maxDeltaT are reported at the end.
 
 Usage
     faGranularFlowFoam [-parallel]

@@ -27,6 +27,7 @@ typedef struct dg {
     double *ubar;               /* scratch: mean velocities, nc */
     unsigned char *moving;      /* M_j, nc */
     unsigned char *stopped;     /* stopped by friction in the last Euler stage, nc */
+    unsigned char *moving0;     /* M_j at the start of a step, to repeat it, nc */
     double *zg, *kg;            /* zeta, kappa at Gauss points, nc * ng */
     double *zf;                 /* zeta at interfaces, n + 1 */
     double *fh, *fqx;           /* interface fluxes, n + 1 */
@@ -75,7 +76,7 @@ static gf_status dg_init(gf_sh1d *s)
     d->nc = nc;
     const size_t total = 10 * nc * M + 3 * nc + 2 * nc * G + 3 * (n + 1);
     double *blk = calloc(total, sizeof *blk);
-    unsigned char *flags = calloc(2 * nc, 1);
+    unsigned char *flags = calloc(3 * nc, 1);
     if (!blk || !flags) {
         free(blk);
         free(flags);
@@ -103,6 +104,7 @@ static gf_status dg_init(gf_sh1d *s)
     d->fqx = p;
     d->moving = flags;
     d->stopped = flags + nc;
+    d->moving0 = flags + 2 * nc;
     s->impl = d;
 
     for (size_t c = 1; c <= n; ++c) {
@@ -262,7 +264,6 @@ static inline double mmt(const gf_sh1d *s, double a, double b, double c)
     return minmod3(a, b, c);
 }
 
-/* Limiting procedure of rkdg eq. 13, one variable. */
 /* Hierarchical moment limiter (Krivodonova 2007): from the highest mode
  * down, u_m = minmod(u_m, (u_{m-1}^{j+1} - u_{m-1}^j)/(2m-1),
  * (u_{m-1}^j - u_{m-1}^{j-1})/(2m-1)) (TVB-relaxed when M > 0); stops at the
@@ -285,7 +286,8 @@ static void limit_moments(const gf_sh1d *s, const dg *d, double *u)
     }
 }
 
-/* The limiter of the configuration on one variable (h or q). */
+/* The limiter of the configuration on one variable (h or q): the moment
+ * limiter, or the limiting procedure of rkdg eq. 13. */
 static void limit_var(const gf_sh1d *s, const dg *d, double *u)
 {
     if (s->cfg.limiter == GF_LIMITER_MOMENT && d->m > 1) {
@@ -533,11 +535,13 @@ static gf_status rk3_step(gf_sh1d *s, dg *d, double dt)
     gf_status st;
     memcpy(d->h0, d->h, nm * sizeof *d->h);
     memcpy(d->q0, d->q, nm * sizeof *d->q);
+    memcpy(d->moving0, d->moving, d->nc);
     if ((st = euler_stage(s, d, d->h0, d->q0, 0.0, NULL, NULL, 1.0, dt, d->h1, d->q1)) ||
         (st = euler_stage(s, d, d->h1, d->q1, 0.75, d->h0, d->q0, 0.25, dt, d->h1, d->q1)) ||
         (st = euler_stage(s, d, d->h1, d->q1, 1.0 / 3.0, d->h0, d->q0, 2.0 / 3.0, dt, d->h, d->q))) {
         memcpy(d->h, d->h0, nm * sizeof *d->h);
         memcpy(d->q, d->q0, nm * sizeof *d->q);
+        memcpy(d->moving, d->moving0, d->nc);
         fill_ghosts(s, d, d->h, d->q);
         return st;
     }
