@@ -81,6 +81,8 @@ int main(int argc, char *argv[])
     scalar hMinBeforeFix = GREAT;   // smallest h of the continuity solve, before the safety net
     label nNegativeSteps = 0;       // steps where the safety net set negative h to 0
     scalar negativeVolume = 0;      // volume it redistributed [m3]
+    label nEulerSteps = 0;          // continuity steps solved again with Euler upwind
+    scalar hMinBdf2 = 0;            // smallest h of those before the re-solve
     label nSteps = 0;
 
     while (runTime.run())
@@ -115,13 +117,33 @@ int main(int argc, char *argv[])
             faScalarMatrix hEqn(fam::ddt(h) + fam::div(phis, h));
             hEqn.solve();
             phi2s = hEqn.flux();
-            boundaries.accumulate(phi2s, runTime.deltaTValue(), runTime.deltaT0Value());
-            // Negative thickness: round-off (~1e-26 m) at dry edges, and where
-            // strongly converging flow makes the implicit upwind matrix lose
-            // diagonal dominance (seen to -2.6e-6 m on the twisted slope).
-            // h is set to 0 there and the positive thicknesses are scaled by
-            // one factor that restores the volume, so h >= 0 and mass is
-            // conserved to round-off; events above 1e-8 max(h) are reported.
+            // Positivity by construction: backward (BDF2, its -h^{n-1}/(2 dt)
+            // term) and higher-order convection can make h negative where the
+            // flow thins or converges strongly.  Implicit Euler with upwind
+            // convection cannot: its matrix has a positive diagonal, non-positive
+            // off-diagonals and column sums S/dt > 0 (every outflow of a face is
+            // an inflow coefficient of its neighbour), so it is an M-matrix with
+            // a non-negative inverse.  A step whose solution goes below round-off
+            // is solved again that way (counted and reported).
+            bool eulerStep = false;
+            if (gMin(h.primitiveField()) < -1e-12*max(gMax(h.primitiveField()), SMALL))
+            {
+                hMinBdf2 = min(hMinBdf2, gMin(h.primitiveField()));
+                const scalarField& S = aMesh.S().field();
+                const scalar rDeltaT = 1.0/runTime.deltaTValue();
+                faScalarMatrix hE(upwindDiv(phis, h));
+                hE.diag() += rDeltaT*S;
+                hE.source() += rDeltaT*h.oldTime().primitiveField()*S;
+                hE.solve();
+                phi2s = hE.flux();
+                eulerStep = true;
+                ++nEulerSteps;
+            }
+            boundaries.accumulate(phi2s, runTime.deltaTValue(), runTime.deltaT0Value(), eulerStep);
+            // What is left below zero is linear-solver round-off at dry edges
+            // (~1e-26 m; at most the solver tolerance): h is set to 0 there and
+            // the positive thicknesses are scaled by one factor that restores
+            // the volume; the smallest h, the steps and the volume are reported.
             const scalar hNeg = -gMin(h.primitiveField());
             hMinBeforeFix = min(hMinBeforeFix, -hNeg);
             if (hNeg > 0)
@@ -180,6 +202,9 @@ int main(int argc, char *argv[])
         << " (linear solver " << tSolveUs << "), continuity " << tContinuity
         << " (linear solver " << tSolveH << "); outer iterations " << nIterTotal
         << "; total " << runTime.elapsedCpuTime() << nl;
+    Info<< "Positivity: continuity re-solved with implicit Euler upwind in " << nEulerSteps
+        << " of " << nSteps << " steps (smallest h of the rejected solutions " << hMinBdf2
+        << " m)" << nl;
     Info<< "Thickness safety net: smallest h of the continuity solves " << hMinBeforeFix
         << " m; negative h set to 0 in " << nNegativeSteps << " of " << nSteps
         << " steps, volume redistributed " << negativeVolume << " m3" << nl;
