@@ -84,6 +84,8 @@ int main(int argc, char *argv[])
     label nEulerSteps = 0;          // continuity steps solved again with Euler upwind
     scalar hMinBdf2 = 0;            // smallest h of those before the re-solve
     label nSteps = 0;
+    label nSlowSteps = 0;           // accepted with the iteration cap reached
+    label nRetries = 0;             // steps repeated with half the time step
 
     while (runTime.run())
     {
@@ -98,17 +100,7 @@ int main(int argc, char *argv[])
 
         scalar resUs = GREAT, resH = GREAT;
         label corr = 0;
-        for (corr = 1; corr <= nOuterCorr; ++corr)
-        {
-            #include "pbEqn.H"
-            #include "UsEqn.H"
-            #include "hEqn.H"
-
-            if (corr > 1 && resUs < tolUs && resH < tolH)
-            {
-                break;
-            }
-        }
+        #include "outerIterations.H"
         {
             // final continuity solve without under-relaxation: the relaxed
             // equation is only satisfied at convergence, the unrelaxed one
@@ -169,11 +161,6 @@ int main(int argc, char *argv[])
             tContinuity += timer.elapsedCpuTime() - t0;
         }
         nIterTotal += min(corr, nOuterCorr);
-        if (corr > nOuterCorr)
-        {
-            Info<< "    not converged in " << nOuterCorr << " iterations: initial residuals Us "
-                << resUs << ", h " << resH << endl;
-        }
 
         runTime.write();
         if (runTime.writeTime())
@@ -202,6 +189,9 @@ int main(int argc, char *argv[])
         << " (linear solver " << tSolveUs << "), continuity " << tContinuity
         << " (linear solver " << tSolveH << "); outer iterations " << nIterTotal
         << "; total " << runTime.elapsedCpuTime() << nl;
+    Info<< "Outer iterations: " << nSlowSteps << " of " << nSteps << " steps accepted at the"
+        << " iteration cap (converging slowly, residuals below the rejection levels), "
+        << nRetries << " steps repeated with half the time step" << nl;
     Info<< "Positivity: continuity re-solved with implicit Euler upwind in " << nEulerSteps
         << " of " << nSteps << " steps (smallest h of the rejected solutions " << hMinBdf2
         << " m)" << nl;
