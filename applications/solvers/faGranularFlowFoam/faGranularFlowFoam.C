@@ -71,7 +71,9 @@ int main(int argc, char *argv[])
     #include "createFaMesh.H"
     #include "createFields.H"
 
-    const scalar mass0 = gSum(h.primitiveField()*aMesh.S().field());
+    // the initial volume of the run; a restart continues the balance of the run
+    // it restarts (granularBoundaries.H)
+    const scalar mass0 = boundaries.initialVolume(gSum(h.primitiveField()*aMesh.S().field()));
     Info<< "Initial mass (volume) " << mass0 << " m3" << nl << endl;
     cpuTime timer;
     scalar tPressure = 0, tMomentum = 0, tContinuity = 0;
@@ -167,6 +169,7 @@ int main(int argc, char *argv[])
         {
             const scalar mass = gSum(h.primitiveField()*aMesh.S().field());
             const scalar imbalance = mass + boundaries.netOut() - mass0;
+            boundaries.write(runTime, mass);
             Info<< "granflow: t = " << runTime.timeName()
                 << " s, wall " << runTime.elapsedClockTime() << " s, mass " << mass
                 << " m3, mass balance: volume + outflow - inflow - initial = " << imbalance

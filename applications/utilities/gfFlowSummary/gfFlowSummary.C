@@ -18,6 +18,7 @@ Usage
 
 #include "fvCFD.H"
 #include "faCFD.H"
+#include "IFstream.H"
 #include "timeSelector.H"
 #include "OFstream.H"
 
@@ -48,7 +49,7 @@ int main(int argc, char *argv[])
     OFstream table(outDir/"gfFlowSummary.dat");
     table.precision(12);
     table << "# time volume max_h max_speed mean_speed runout(h>=" << threshold
-          << ") max_speed(h>=" << threshold << ")" << nl;
+          << ") max_speed(h>=" << threshold << ") net_outflow mass_balance_rel" << nl;
 
     forAll(timeDirs, timei)
     {
@@ -113,9 +114,26 @@ int main(int argc, char *argv[])
         // mass-weighted mean speed: |momentum| density averaged over the mass
         const scalar meanSpeed =
             gSum(h.primitiveField()*speed*aMesh.S().field())/max(volume, VSMALL);
+        // the solver's mass balance of this time (faGranularFlowFoam writes
+        // uniform/granflowMassBalance): net outflow so far and
+        // (volume + outflow - inflow - initial)/initial; "-" where absent
+        // (the initial time, other solvers)
+        word netOut("-"), balance("-");
+        {
+            const fileName bf(runTime.timePath()/"uniform"/"granflowMassBalance");
+            if (isFile(bf))
+            {
+                IFstream is(bf);
+                const dictionary bd(is);
+                const scalar v0 = bd.get<scalar>("initialVolume");
+                const scalar out = bd.get<scalar>("netOutflow");
+                netOut = Foam::name(out);
+                balance = Foam::name((volume + out - v0)/max(v0, VSMALL));
+            }
+        }
         table << runTime.timeName() << ' ' << volume << ' ' << gMax(h.primitiveField()) << ' '
               << gMax(speed) << ' ' << meanSpeed << ' ' << (runout > -GREAT ? runout : NAN) << ' '
-              << maxSpeedThick << nl;
+              << maxSpeedThick << ' ' << netOut << ' ' << balance << nl;
         Info<< "Time " << runTime.timeName() << ": volume " << volume << " m3, max h "
             << gMax(h.primitiveField()) << " m, max speed " << gMax(speed) << " m/s, runout "
             << runout << " m" << endl;
