@@ -82,7 +82,7 @@ int main(int argc, char *argv[])
     label nCappedSteps = 0;   // steps whose dt maxDeltaT capped below the maxCo step
     scalar hMinBeforeFix = GREAT;   // smallest h of the continuity solve, before the safety net
     label nNegativeSteps = 0;       // steps where the safety net set negative h to 0
-    scalar negativeVolume = 0;      // volume it redistributed [m3]
+    scalar negativeVolume = 0;      // volume it added [m3]
     label nEulerSteps = 0;          // continuity steps solved again with Euler upwind
     scalar hMinBdf2 = 0;            // smallest h of those before the re-solve
     label nSteps = 0;
@@ -135,30 +135,18 @@ int main(int argc, char *argv[])
             }
             boundaries.accumulate(phi2s, runTime.deltaTValue(), runTime.deltaT0Value(), eulerStep);
             // What is left below zero is linear-solver round-off at dry edges
-            // (~1e-26 m; at most the solver tolerance): h is set to 0 there and
-            // the positive thicknesses are scaled by one factor that restores
-            // the volume; the smallest h, the steps and the volume are reported.
+            // (~1e-20 m; at most the solver tolerance): a local net sets h to 0
+            // in those faces only; the smallest h, the steps and the volume it
+            // added (counted in the mass balance's volume) are reported.
             const scalar hNeg = -gMin(h.primitiveField());
             hMinBeforeFix = min(hMinBeforeFix, -hNeg);
             if (hNeg > 0)
             {
                 ++nNegativeSteps;
                 scalarField& hf = h.primitiveFieldRef();
-                const scalarField& S = aMesh.S().field();
-                const scalar deficit = -gSum(min(hf, scalar(0))*S);
-                negativeVolume += deficit;
+                negativeVolume += -gSum(min(hf, scalar(0))*aMesh.S().field());
                 hf = max(hf, scalar(0));
-                const scalar positive = gSum(hf*S);
-                if (positive > deficit && positive > VSMALL)
-                {
-                    hf *= (positive - deficit)/positive;
-                }
                 h.correctBoundaryConditions();
-                if (hNeg > 1e-8*gMax(hf))
-                {
-                    Info<< "    warning: negative thickness " << -hNeg << " m set to 0, volume "
-                        << deficit << " m3 taken from the wet faces" << endl;
-                }
             }
             tContinuity += timer.elapsedCpuTime() - t0;
         }
@@ -200,7 +188,7 @@ int main(int argc, char *argv[])
         << " m)" << nl;
     Info<< "Thickness safety net: smallest h of the continuity solves " << hMinBeforeFix
         << " m; negative h set to 0 in " << nNegativeSteps << " of " << nSteps
-        << " steps, volume redistributed " << negativeVolume << " m3" << nl;
+        << " steps (locally), volume added " << negativeVolume << " m3" << nl;
     if (nCappedSteps > 0)
     {
         Info<< "Time step capped by maxDeltaT (controlDict; the Courant number stayed below"
