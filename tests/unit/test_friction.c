@@ -210,6 +210,52 @@ static void bad_state_is_an_error_not_nan(void **state)
     assert_int_equal(gf_friction_eval(&f, &s, &r), GF_ENONFINITE);
 }
 
+/* gf_friction_implicit_speed solves h s + dt tau(s) = M: for every law the
+ * returned speed satisfies it to 1e-12 relative (or is 0 exactly where the
+ * law at rest holds M: Coulomb with u0 = 0 stops at dt mu p/rho >= M). */
+static void implicit_speed_solves_backward_euler(void **state)
+{
+    (void)state;
+    const char *laws[] = {"coulomb", "mu_i", "voellmy", "chezy", "none"};
+    const double h = 0.3, rho = 1500.0, g = 9.81, pb = rho * g * h * 0.9, dt = 0.01;
+    for (size_t l = 0; l < sizeof laws / sizeof laws[0]; ++l)
+        for (int reg = 0; reg < 2; ++reg) {
+            gf_friction f;
+            assert_int_equal(gf_friction_init(&f, laws[l]), GF_SUCCESS);
+            double u0;
+            if (gf_friction_get(&f, "u0", &u0) == GF_SUCCESS)
+                assert_int_equal(gf_friction_set(&f, "u0", reg ? 1e-3 : 0.0), GF_SUCCESS);
+            else if (reg)
+                continue;
+            const gf_friction_state st = {h, 0.0, pb, rho, g};
+            for (double M = 1e-6; M < 100.0; M *= 3.7) {
+                double s;
+                assert_int_equal(gf_friction_implicit_speed(&f, &st, M, dt, &s), GF_SUCCESS);
+                assert_true(s >= 0.0 && s <= M / h);
+                gf_friction_state x = st;
+                x.speed = s;
+                gf_friction_result r;
+                assert_int_equal(gf_friction_eval(&f, &x, &r), GF_SUCCESS);
+                if (s == 0.0)
+                    assert_true(dt * r.tau >= M * (1.0 - 1e-12)); /* held at rest */
+                else
+                    assert_true(fabs(h * s + dt * r.tau - M) <= 1e-12 * M);
+            }
+        }
+    /* exact Coulomb stops exactly at the bound and not below it */
+    gf_friction c;
+    assert_int_equal(gf_friction_init(&c, "coulomb"), GF_SUCCESS);
+    assert_int_equal(gf_friction_set(&c, "mu", 0.5), GF_SUCCESS);
+    const gf_friction_state st = {h, 0.0, pb, rho, g};
+    const double bound = dt * 0.5 * pb / rho;
+    double s;
+    assert_int_equal(gf_friction_implicit_speed(&c, &st, bound, dt, &s), GF_SUCCESS);
+    assert_true(s == 0.0);
+    assert_int_equal(gf_friction_implicit_speed(&c, &st, 2.0 * bound, dt, &s), GF_SUCCESS);
+    assert_close(s, bound / h, 1e-15);
+    assert_int_equal(gf_friction_implicit_speed(&c, &st, -1.0, dt, &s), GF_EDOM);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -219,6 +265,7 @@ int main(void)
         cmocka_unit_test(no_contact_no_coulomb_friction),
         cmocka_unit_test(implicit_update_never_reverses_velocity),
         cmocka_unit_test(static_bound_is_the_coulomb_limit),
+        cmocka_unit_test(implicit_speed_solves_backward_euler),
         cmocka_unit_test(unknown_law_lists_valid_names),
         cmocka_unit_test(bad_coefficients_name_key_and_range),
         cmocka_unit_test(bad_state_is_an_error_not_nan),

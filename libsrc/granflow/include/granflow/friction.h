@@ -133,6 +133,26 @@ gf_status gf_friction_static_bound(const gf_friction *f, const gf_friction_state
  * step), stopping at zero: sgn(u) max(0, |u| - decel_dt). */
 double gf_friction_decelerate(double u, double decel_dt);
 
+/* Pointwise implicit friction update (the explicit finite-area scheme's
+ * friction step, and exact Coulomb stopping).  Given the trial momentum
+ * magnitude M = |h u*| >= 0 per unit area after the explicit part of a step
+ * of length dt >= 0, find the new speed s >= 0 with
+ *
+ *     h s + dt tau(s) = M                          (backward Euler in |u|),
+ *
+ * tau = |tau_b|/rho of the law at the state s->h, s->pb, s->rho, s->g (the
+ * direction of motion is kept: friction never reverses it).  When the law at
+ * rest can hold the trial momentum, dt tau(0) >= M, the face stops: *speed =
+ * 0 exactly (Coulomb's static condition; with u0 = 0 tau(0) is the static
+ * bound mu p_b/rho, with u0 > 0 it is 0 and material only creeps to rest).
+ * Every law's tau is non-decreasing in s, so the root is unique; coulomb
+ * (any u0) is solved in closed form, the other laws by Illinois regula falsi
+ * with bisection steps, to 1e-14 relative.  s->speed is not
+ * used.  GF_EDOM / GF_ENONFINITE for a negative or non-finite M, dt or state;
+ * h must be > 0. */
+gf_status gf_friction_implicit_speed(const gf_friction *f, const gf_friction_state *s, double M,
+                                     double dt, double *speed);
+
 #ifdef __cplusplus
 }
 #endif

@@ -251,3 +251,80 @@ gf_status gf_friction_static_bound(const gf_friction *f, const gf_friction_state
     *tau_s = r.tau;
     return GF_SUCCESS;
 }
+
+/* tau(s) of the law at state st with speed s; no argument checks (done once
+ * by the caller). */
+static double tau_at(const gf_friction *f, const gf_friction_state *st, double s)
+{
+    gf_friction_state x = *st;
+    x.speed = s;
+    gf_friction_result r;
+    f->type->eval(f->p, &x, &r);
+    return r.tau;
+}
+
+gf_status gf_friction_implicit_speed(const gf_friction *f, const gf_friction_state *s, double M,
+                                     double dt, double *speed)
+{
+    if (!f || !f->type || !s || !speed)
+        return gf_fail(GF_EINVAL, "gf_friction_implicit_speed: null argument or uninitialised law");
+    gf_status st;
+    if ((st = gf_check_range("flow thickness h", s->h, 1e-300, HUGE_VAL)) ||
+        (st = gf_check_range("trial momentum |h u|", M, 0.0, HUGE_VAL)) ||
+        (st = gf_check_range("time step dt", dt, 0.0, HUGE_VAL)) ||
+        (st = gf_check_range("density rho", s->rho, 1e-300, HUGE_VAL)) ||
+        (st = gf_check_range("gravity g", s->g, 0.0, HUGE_VAL)))
+        return st;
+    if (!isfinite(s->pb))
+        return gf_fail(GF_ENONFINITE, "basal pressure p_b = %g is not a finite number", s->pb);
+    const double h = s->h;
+    /* Coulomb: h s + dt mu p s/(s + u0) = M, i.e. h s^2 + (h u0 + dt mu p - M) s - M u0 = 0 */
+    if (f->type == gf_friction_coulomb) {
+        const double mp = s->pb > 0.0 ? f->p[0] * s->pb / s->rho : 0.0, u0 = f->p[1];
+        if (u0 == 0.0) {
+            *speed = M > dt * mp ? (M - dt * mp) / h : 0.0;
+            return GF_SUCCESS;
+        }
+        const double b = h * u0 + dt * mp - M;
+        /* positive root, written without cancellation */
+        const double disc = sqrt(b * b + 4.0 * h * M * u0);
+        *speed = b < 0.0 ? (disc - b) / (2.0 * h) : 2.0 * M * u0 / (disc + b);
+        return GF_SUCCESS;
+    }
+    const double tau0 = tau_at(f, s, 0.0);
+    if (dt * tau0 >= M) {
+        *speed = 0.0;
+        return GF_SUCCESS;
+    }
+    double lo = 0.0, hi = M / h;
+    double glo = dt * tau0 - M, ghi = dt * tau_at(f, s, hi); /* g(lo) < 0 <= g(hi) */
+    if (ghi <= 0.0) {
+        *speed = hi;
+        return GF_SUCCESS;
+    }
+    int side = 0;
+    for (int it = 0; it < 200 && hi - lo > 1e-14 * hi; ++it) {
+        /* Illinois regula falsi, with a bisection step every fourth iteration */
+        double x = (it % 4 == 3) ? 0.5 * (lo + hi) : (lo * ghi - hi * glo) / (ghi - glo);
+        if (!(x > lo && x < hi))
+            x = 0.5 * (lo + hi);
+        const double gx = h * x + dt * tau_at(f, s, x) - M;
+        if (gx == 0.0) {
+            lo = hi = x;
+            break;
+        }
+        if (gx < 0.0) {
+            lo = x, glo = gx;
+            if (side == -1)
+                ghi *= 0.5;
+            side = -1;
+        } else {
+            hi = x, ghi = gx;
+            if (side == 1)
+                glo *= 0.5;
+            side = 1;
+        }
+    }
+    *speed = 0.5 * (lo + hi);
+    return GF_SUCCESS;
+}

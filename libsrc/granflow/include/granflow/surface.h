@@ -1,0 +1,164 @@
+/*
+ * granflow — explicit high-resolution finite-volume scheme for the
+ * Rauter–Tuković model on a curved surface mesh (finite-area paper eqs. 30,
+ * 33 and 35), on plain arrays of faces and edges.
+ *
+ * State per face: thickness h (measured normal to the surface) and the
+ * depth-integrated momentum m = h u as a 3D Cartesian vector kept tangential
+ * to the face (eq. 28).  One step of length dt is SSP-RK2 (Heun):
+ *
+ *   U1 = F(U0),  U(t+dt) = (U0 + F(U1)) / 2,
+ *
+ * where F is one forward-Euler stage followed by the pointwise implicit
+ * friction update:
+ *
+ *  1. reconstruction: Green–Gauss gradients of h and of the three Cartesian
+ *     velocity components, Barth–Jespersen limited (h at an edge stays within
+ *     the values of the face and its neighbours, so it is >= 0; velocity
+ *     within its wet neighbours'); order = 1 switches it off;
+ *  2. edge fluxes in the edge frame (nu edge normal in the surface, n_e
+ *     surface normal, t_e = n_e x nu): each side's velocity is rotated from
+ *     its face's tangent plane into the edge plane about t_e, then HLL with
+ *     Einfeldt speeds and Toro's dry-bed speeds (a front moves at u + 2c)
+ *     for mass h u_nu, normal momentum h u_nu^2 + h p_b/(2 rho) (eq. 35's
+ *     lateral pressure with p_b = rho a h) and tangential momentum
+ *     h u_nu u_t.  An edge between two faces at rest (m = 0 on both) carries
+ *     no mass and the mean pressure, so a pile that friction holds stays at
+ *     rest exactly.  Boundary edges: wall (mirror state, zero mass flux),
+ *     outflow (one-way: the interior state leaves, nothing enters), inflow
+ *     (prescribed h and u: the flux of that state);
+ *  3. face update: m* = m + dt (-div F + h g), projected onto the face's
+ *     tangent plane; the normal part removed is the basal reaction, eq. (33):
+ *       p_b/rho = n . div F_adv [centrifugal]
+ *               + n . div F_press [lateral feedback] - h n . g,
+ *     clipped at 0 (lift-off), and a = p_b/(rho h) enters the next stage's
+ *     pressure flux;
+ *  4. friction: gf_friction_implicit_speed per face (exact Coulomb stopping:
+ *     a face whose driving force friction can hold stops within the stage).
+ *
+ * Positivity: with Co <= 0.5 (Co = dt sum_e L_e s_e / (2 A), s_e the edge's
+ * largest wave speed) the first-order update keeps h >= 0; a face that the
+ * reconstructed fluxes would drive negative has its edges recomputed at
+ * first order (counted).  Mass: every edge flux leaves one face and enters
+ * the other, so the volume changes only through boundary edges, whose
+ * fluxes are accumulated per edge (gf_surface_edge_volume).
+ *
+ * Active set: faces wetter than h_dry and two rings of neighbours; only
+ * those faces and their edges are computed, so dry terrain costs a scan.
+ *
+ * Parallel: faces n_faces .. n_faces+n_ghosts-1 are halo copies of other
+ * ranks' faces (one per processor edge); the caller's exchange callback
+ * fills their entries of a field before the kernel reads them.
+ */
+#ifndef GRANFLOW_SURFACE_H
+#define GRANFLOW_SURFACE_H
+
+#include <stddef.h>
+
+#include "granflow/friction.h"
+#include "granflow/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum gf_edge_kind {
+    GF_EDGE_INTERNAL = 0, /* owner and neighbour faces (neighbour may be a ghost) */
+    GF_EDGE_WALL,         /* impermeable, slip; also symmetry planes */
+    GF_EDGE_OUTFLOW,      /* one-way: material leaves, nothing enters */
+    GF_EDGE_INFLOW        /* prescribed thickness and velocity (gf_surface_set_inflow) */
+} gf_edge_kind;
+
+/* Geometry of a surface mesh; arrays are read, not copied, and must outlive
+ * the solver.  Vectors are 3 consecutive doubles. */
+typedef struct gf_surface_mesh {
+    size_t n_faces;          /* owned faces */
+    size_t n_ghosts;         /* halo faces, indices n_faces .. n_faces+n_ghosts-1 */
+    size_t n_edges;
+    const double *area;      /* [n_faces+n_ghosts] face areas */
+    const double *centre;    /* [3(n_faces+n_ghosts)] face centres */
+    const double *normal;    /* [3(n_faces+n_ghosts)] unit face normals (away from the bed) */
+    const int *owner;        /* [n_edges] owner face */
+    const int *neighbour;    /* [n_edges] neighbour face (or ghost); -1 on boundary edges */
+    const int *kind;         /* [n_edges] gf_edge_kind */
+    const double *length;    /* [n_edges] edge lengths */
+    const double *edge_normal; /* [3 n_edges] unit normal in the surface, owner -> out */
+    const double *edge_centre; /* [3 n_edges] edge midpoints */
+} gf_surface_mesh;
+
+typedef struct gf_surface_config {
+    double g[3];              /* gravity vector [m/s^2] */
+    double rho;               /* density, > 0 [kg/m^3] */
+    double h_dry;             /* thickness below which a face has no velocity, > 0 [m] */
+    double courant;           /* Co of the time step, (0, 0.5] for positivity */
+    int order;                /* 1 (first order) or 2 (limited linear reconstruction) */
+    int centrifugal;          /* p_b includes n . div(h u u) (eq. 33, first term) */
+    int lateral_feedback;     /* p_b includes n . div of the lateral pressure (eq. 33, third) */
+    gf_friction friction;     /* basal friction law (gf_friction_init) */
+} gf_surface_config;
+
+/* Defaults: g = (0, 0, -9.81), rho 1000, h_dry 1e-6, Co 0.5, order 2,
+ * centrifugal and lateral feedback on, friction none. */
+void gf_surface_config_default(gf_surface_config *c);
+
+typedef struct gf_surface gf_surface;
+
+/* Fill the ghost entries (indices n_faces ..) of a field with ncomp
+ * components per face from the neighbouring ranks; 0 on success. */
+typedef int (*gf_surface_exchange_fn)(void *ctx, double *field, int ncomp);
+
+/* Check the mesh (finite geometry, unit normals, index ranges, kinds) and
+ * the configuration; errors name the entry. */
+gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config *cfg,
+                           gf_surface **out);
+void gf_surface_free(gf_surface *s);
+
+/* Halo exchange used by every stage (NULL: serial, no ghosts allowed). */
+void gf_surface_set_exchange(gf_surface *s, gf_surface_exchange_fn fn, void *ctx);
+
+/* Initial state of the owned faces: h [n_faces] >= 0 and finite, m
+ * [3 n_faces] or NULL for rest; m is projected onto the tangent planes and
+ * set to 0 where h <= h_dry.  Errors name the face. */
+gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *m);
+
+/* Prescribed state of an inflow edge: thickness h >= 0 and velocity u (3D,
+ * projected onto the owner's tangent plane). */
+gf_status gf_surface_set_inflow(gf_surface *s, size_t edge, double h, const double u[3]);
+
+/* Largest stable step for the configured Courant number (HUGE_VAL when
+ * nothing moves and no wave can start: an empty domain). */
+gf_status gf_surface_max_dt(gf_surface *s, double *dt);
+
+/* Advance by dt.  A step that would make a thickness negative even with
+ * first-order fluxes is repeated as two half steps (counted; up to 6
+ * levels); GF_EPHYS naming the face if that is not enough. */
+gf_status gf_surface_step(gf_surface *s, double dt);
+
+const double *gf_surface_h(const gf_surface *s);        /* [n_faces+n_ghosts] */
+const double *gf_surface_momentum(const gf_surface *s); /* [3(n_faces+n_ghosts)] */
+const double *gf_surface_pb(const gf_surface *s);       /* [n_faces] basal pressure [Pa] */
+/* Cumulative volume that left through each edge (negative: entered), from
+ * the owner's side; meaningful for boundary edges. */
+const double *gf_surface_edge_volume(const gf_surface *s);
+
+/* Volume sum_f A_f h_f of the owned faces. */
+double gf_surface_volume(const gf_surface *s);
+
+typedef struct gf_surface_stats {
+    unsigned long steps;
+    unsigned long face_updates;     /* active faces summed over steps */
+    unsigned long first_order_edges; /* edges recomputed at first order for positivity */
+    unsigned long stopped_faces;    /* faces brought to rest by friction in a stage */
+    unsigned long halved_steps;     /* steps repeated as two halves (positivity) */
+    unsigned long roundoff_faces;   /* faces whose h came out in (-1e-13 h_scale, 0): set to 0 */
+    double roundoff_volume;         /* volume added by those (<= 1e-13 of the volume) */
+    size_t active_faces;            /* of the last step */
+} gf_surface_stats;
+
+void gf_surface_get_stats(const gf_surface *s, gf_surface_stats *st);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,854 @@
+/* Explicit finite-volume scheme on a surface mesh: see granflow/surface.h. */
+#include "granflow/surface.h"
+#include "internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NV 4 /* reconstructed variables: h, u_x, u_y, u_z */
+
+struct gf_surface {
+    gf_surface_mesh m;
+    gf_surface_config c;
+    size_t nt; /* owned + ghost faces */
+    gf_surface_exchange_fn xfn;
+    void *xctx;
+    double gmag;
+    /* face -> edges (all nt faces; a ghost has its one processor edge) */
+    size_t *fe_start;
+    int *fe;
+    /* edge frames: nu, t, nu_L (owner plane), nu_R (neighbour plane) */
+    double *frame;
+    /* state and stage buffers (nt, 3 nt) */
+    double *h, *mom, *h1, *m1, *h2, *m2;
+    double *a;    /* normal acceleration p_b/(rho h) per face (nt) */
+    double *pb;   /* n_faces */
+    double *grad; /* 3 NV per face (nt) */
+    /* accumulators per owned face */
+    double *acc_h, *acc_m, *acc_pn;
+    /* per-edge fluxes */
+    double *fh, *fm, *fp, *dpn; /* dpn: extra pressure on the neighbour side (rest edges) */
+    unsigned char *first;
+    double *edge_vol, *edge_vol_step;
+    double *inflow; /* per edge: h, u[3] */
+    /* active set */
+    unsigned *mark_f, *mark_e, *mark_g, stamp;
+    int *act_f, *act_e, *ring, *prev_f;
+    size_t n_act_f, n_act_e, n_act_owned, n_prev_f;
+    double *a_save;
+    double h_scale;
+    gf_surface_stats st;
+};
+
+static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static inline void cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+static inline int normalise3(double *a)
+{
+    const double l = sqrt(dot3(a, a));
+    if (!(l > 0.0) || !isfinite(l))
+        return -1;
+    a[0] /= l, a[1] /= l, a[2] /= l;
+    return 0;
+}
+
+void gf_surface_config_default(gf_surface_config *c)
+{
+    memset(c, 0, sizeof *c);
+    c->g[2] = -9.81;
+    c->rho = 1000.0;
+    c->h_dry = 1e-6;
+    c->courant = 0.5;
+    c->order = 2;
+    c->centrifugal = 1;
+    c->lateral_feedback = 1;
+    gf_friction_init(&c->friction, "none");
+}
+
+void gf_surface_free(gf_surface *s)
+{
+    if (!s)
+        return;
+    void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->h,        s->mom,  s->h1,     s->m1,
+                    s->h2,       s->m2,     s->a,      s->pb,       s->grad, s->acc_h,  s->acc_m,
+                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn,       s->first, s->edge_vol,
+                    s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
+                    s->act_e,    s->ring,     s->prev_f, s->a_save};
+    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
+        free(bufs[i]);
+    free(s);
+}
+
+static gf_status check_config(const gf_surface_config *c)
+{
+    gf_status st;
+    for (int k = 0; k < 3; ++k)
+        if (!isfinite(c->g[k]))
+            return gf_fail(GF_ENONFINITE, "surface scheme: gravity component %d is not finite", k);
+    if ((st = gf_check_range("surface scheme: density rho [kg/m^3]", c->rho, 1e-300, 1e300)) ||
+        (st = gf_check_range("surface scheme: dry thickness h_dry [m]", c->h_dry, 1e-300, 1e300)) ||
+        (st = gf_check_range("surface scheme: Courant number (positivity bound 0.5)", c->courant, 1e-12, 0.5)))
+        return st;
+    if (c->order != 1 && c->order != 2)
+        return gf_fail(GF_EDOM, "surface scheme: order = %d; allowed: 1 or 2", c->order);
+    if (!c->friction.type)
+        return gf_fail(GF_EINVAL, "surface scheme: friction law not initialised");
+    return gf_friction_check(&c->friction);
+}
+
+static gf_status check_mesh(const gf_surface_mesh *m)
+{
+    const size_t nt = m->n_faces + m->n_ghosts;
+    if (!m->area || !m->centre || !m->normal || !m->owner || !m->neighbour || !m->kind || !m->length ||
+        !m->edge_normal || !m->edge_centre)
+        return gf_fail(GF_EINVAL, "surface mesh: a geometry array is missing");
+    if (m->n_faces == 0 || nt > (size_t)0x7fffffff || m->n_edges > (size_t)0x7fffffff)
+        return gf_fail(GF_EINVAL, "surface mesh: %zu faces, %zu ghosts: need 1 to 2^31 faces", m->n_faces,
+                       m->n_ghosts);
+    for (size_t f = 0; f < nt; ++f) {
+        const double *n = m->normal + 3 * f;
+        if (!(m->area[f] > 0.0) || !isfinite(m->area[f]))
+            return gf_fail(GF_EDOM, "surface mesh: face %zu has area %g (must be > 0)", f, m->area[f]);
+        if (!(fabs(dot3(n, n) - 1.0) < 1e-8))
+            return gf_fail(GF_EDOM, "surface mesh: normal of face %zu is not a unit vector (|n|^2 = %g)", f,
+                           dot3(n, n));
+        for (int k = 0; k < 3; ++k)
+            if (!isfinite(m->centre[3 * f + k]))
+                return gf_fail(GF_ENONFINITE, "surface mesh: centre of face %zu is not finite", f);
+    }
+    for (size_t e = 0; e < m->n_edges; ++e) {
+        const int o = m->owner[e], nb = m->neighbour[e], k = m->kind[e];
+        if (o < 0 || (size_t)o >= m->n_faces)
+            return gf_fail(GF_EDOM, "surface mesh: edge %zu has owner %d outside 0..%zu", e, o, m->n_faces - 1);
+        if (k < GF_EDGE_INTERNAL || k > GF_EDGE_INFLOW)
+            return gf_fail(GF_EDOM, "surface mesh: edge %zu has kind %d (allowed 0..3)", e, k);
+        if (k == GF_EDGE_INTERNAL ? (nb < 0 || (size_t)nb >= nt || nb == o) : nb != -1)
+            return gf_fail(GF_EDOM, "surface mesh: edge %zu (kind %d) has neighbour %d", e, k, nb);
+        if (!(m->length[e] > 0.0) || !isfinite(m->length[e]))
+            return gf_fail(GF_EDOM, "surface mesh: edge %zu has length %g (must be > 0)", e, m->length[e]);
+        for (int j = 0; j < 3; ++j)
+            if (!isfinite(m->edge_normal[3 * e + j]) || !isfinite(m->edge_centre[3 * e + j]))
+                return gf_fail(GF_ENONFINITE, "surface mesh: edge %zu has non-finite geometry", e);
+    }
+    return GF_SUCCESS;
+}
+
+/* Edge frame: n_e = (n_o + n_n)/|.|, nu orthogonalised against n_e, t = n_e x nu;
+ * nu_L = t x n_o lies in the owner's plane (the rotation of nu about t). */
+static gf_status build_frames(gf_surface *s)
+{
+    const gf_surface_mesh *m = &s->m;
+    for (size_t e = 0; e < m->n_edges; ++e) {
+        double *fr = s->frame + 12 * e, ne[3];
+        const double *no = m->normal + 3 * m->owner[e];
+        const double *nn = m->neighbour[e] >= 0 ? m->normal + 3 * m->neighbour[e] : no;
+        for (int k = 0; k < 3; ++k)
+            ne[k] = no[k] + nn[k];
+        double *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
+        memcpy(nu, m->edge_normal + 3 * e, 3 * sizeof *nu);
+        if (normalise3(ne))
+            return gf_fail(GF_EDOM, "surface mesh: faces across edge %zu have opposite normals", e);
+        const double d = dot3(nu, ne);
+        for (int k = 0; k < 3; ++k)
+            nu[k] -= d * ne[k];
+        if (normalise3(nu))
+            return gf_fail(GF_EDOM, "surface mesh: edge normal of edge %zu is zero or normal to the surface", e);
+        cross3(ne, nu, t);
+        cross3(t, no, nul);
+        cross3(t, nn, nur);
+        if (normalise3(t) || normalise3(nul) || normalise3(nur))
+            return gf_fail(GF_EDOM, "surface mesh: degenerate frame at edge %zu", e);
+    }
+    return GF_SUCCESS;
+}
+
+gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config *cfg, gf_surface **out)
+{
+    if (!mesh || !cfg || !out)
+        return gf_fail(GF_EINVAL, "gf_surface_alloc: null argument");
+    *out = NULL;
+    gf_status st;
+    if ((st = check_config(cfg)) || (st = check_mesh(mesh)))
+        return st;
+    gf_surface *s = calloc(1, sizeof *s);
+    if (!s)
+        return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
+    s->m = *mesh;
+    s->c = *cfg;
+    s->gmag = sqrt(dot3(cfg->g, cfg->g));
+    const size_t nt = s->nt = mesh->n_faces + mesh->n_ghosts, ne = mesh->n_edges, nf = mesh->n_faces;
+    s->fe_start = calloc(nt + 1, sizeof *s->fe_start);
+    s->fe = malloc((2 * ne + 1) * sizeof *s->fe);
+    s->frame = malloc((12 * ne + 1) * sizeof *s->frame);
+    double **d3[] = {&s->mom, &s->m1, &s->m2};
+    for (int i = 0; i < 3; ++i)
+        *d3[i] = calloc(3 * nt, sizeof(double));
+    double **d1[] = {&s->h, &s->h1, &s->h2, &s->a};
+    for (int i = 0; i < 4; ++i)
+        *d1[i] = calloc(nt, sizeof(double));
+    s->pb = calloc(nf, sizeof *s->pb);
+    s->grad = calloc(3 * NV * nt, sizeof *s->grad);
+    s->acc_h = calloc(nf, sizeof *s->acc_h);
+    s->acc_m = calloc(3 * nf, sizeof *s->acc_m);
+    s->acc_pn = calloc(nf, sizeof *s->acc_pn);
+    s->fh = calloc(ne + 1, sizeof *s->fh);
+    s->fm = calloc(3 * ne + 1, sizeof *s->fm);
+    s->fp = calloc(ne + 1, sizeof *s->fp);
+    s->dpn = calloc(ne + 1, sizeof *s->dpn);
+    s->first = calloc(ne + 1, 1);
+    s->edge_vol = calloc(ne + 1, sizeof *s->edge_vol);
+    s->edge_vol_step = calloc(ne + 1, sizeof *s->edge_vol_step);
+    s->inflow = calloc(4 * ne + 1, sizeof *s->inflow);
+    s->mark_f = calloc(nt, sizeof *s->mark_f);
+    s->mark_g = calloc(nt, sizeof *s->mark_g);
+    s->mark_e = calloc(ne + 1, sizeof *s->mark_e);
+    s->act_f = malloc(nt * sizeof *s->act_f);
+    s->ring = malloc(nt * sizeof *s->ring);
+    s->act_e = malloc((ne + 1) * sizeof *s->act_e);
+    s->prev_f = malloc(nt * sizeof *s->prev_f);
+    s->a_save = malloc(nt * sizeof *s->a_save);
+    if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->h || !s->h1 || !s->h2 ||
+        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn ||
+        !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
+        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save) {
+        gf_surface_free(s);
+        return gf_fail(GF_ENOMEM, "surface scheme: out of memory for %zu faces", nt);
+    }
+    /* CSR face -> edges */
+    for (size_t e = 0; e < ne; ++e) {
+        s->fe_start[mesh->owner[e] + 1]++;
+        if (mesh->neighbour[e] >= 0)
+            s->fe_start[mesh->neighbour[e] + 1]++;
+    }
+    for (size_t f = 0; f < nt; ++f)
+        s->fe_start[f + 1] += s->fe_start[f];
+    size_t *fill = calloc(nt, sizeof *fill);
+    if (!fill) {
+        gf_surface_free(s);
+        return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
+    }
+    for (size_t e = 0; e < ne; ++e) {
+        const int o = mesh->owner[e], n = mesh->neighbour[e];
+        s->fe[s->fe_start[o] + fill[o]++] = (int)e;
+        if (n >= 0)
+            s->fe[s->fe_start[n] + fill[n]++] = (int)e;
+    }
+    free(fill);
+    for (size_t f = 0; f < nt; ++f) {
+        const double gn = -dot3(cfg->g, mesh->normal + 3 * f);
+        s->a[f] = gn > 0.0 ? gn : 0.0;
+    }
+    if ((st = build_frames(s))) {
+        gf_surface_free(s);
+        return st;
+    }
+    *out = s;
+    return GF_SUCCESS;
+}
+
+void gf_surface_set_exchange(gf_surface *s, gf_surface_exchange_fn fn, void *ctx)
+{
+    s->xfn = fn;
+    s->xctx = ctx;
+}
+
+static gf_status exchange(gf_surface *s, double *field, int ncomp)
+{
+    if (s->m.n_ghosts == 0)
+        return GF_SUCCESS;
+    if (!s->xfn)
+        return gf_fail(GF_EINVAL, "surface scheme: %zu ghost faces but no exchange callback", s->m.n_ghosts);
+    if (s->xfn(s->xctx, field, ncomp))
+        return gf_fail(GF_EIO, "surface scheme: halo exchange failed");
+    return GF_SUCCESS;
+}
+
+gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *mom)
+{
+    const size_t nf = s->m.n_faces;
+    s->h_scale = 0.0;
+    for (size_t f = 0; f < nf; ++f) {
+        if (!isfinite(h[f]) || h[f] < 0.0)
+            return gf_fail(GF_EDOM, "surface scheme: initial thickness h = %g in face %zu (must be finite, >= 0)",
+                           h[f], f);
+        s->h[f] = h[f];
+        s->h_scale = fmax(s->h_scale, h[f]);
+        double *m = s->mom + 3 * f;
+        const double *n = s->m.normal + 3 * f;
+        for (int k = 0; k < 3; ++k) {
+            m[k] = mom ? mom[3 * f + k] : 0.0;
+            if (!isfinite(m[k]))
+                return gf_fail(GF_ENONFINITE, "surface scheme: initial momentum of face %zu is not finite", f);
+        }
+        const double mn = dot3(m, n);
+        for (int k = 0; k < 3; ++k)
+            m[k] = h[f] > s->c.h_dry ? m[k] - mn * n[k] : 0.0;
+        const double gn = -dot3(s->c.g, n);
+        s->a[f] = gn > 0.0 ? gn : 0.0;
+    }
+    gf_status st;
+    if ((st = exchange(s, s->h, 1)) || (st = exchange(s, s->mom, 3)) || (st = exchange(s, s->a, 1)))
+        return st;
+    return GF_SUCCESS;
+}
+
+gf_status gf_surface_set_inflow(gf_surface *s, size_t edge, double h, const double u[3])
+{
+    if (edge >= s->m.n_edges || s->m.kind[edge] != GF_EDGE_INFLOW)
+        return gf_fail(GF_EINVAL, "surface scheme: edge %zu is not an inflow edge", edge);
+    if (!isfinite(h) || h < 0.0 || !isfinite(u[0]) || !isfinite(u[1]) || !isfinite(u[2]))
+        return gf_fail(GF_EDOM, "surface scheme: inflow state h = %g at edge %zu (h must be finite, >= 0)", h,
+                       edge);
+    const double *n = s->m.normal + 3 * s->m.owner[edge], un = dot3(u, n);
+    double *b = s->inflow + 4 * edge;
+    b[0] = h;
+    for (int k = 0; k < 3; ++k)
+        b[1 + k] = u[k] - un * n[k];
+    return GF_SUCCESS;
+}
+
+static inline void velocity(const gf_surface *s, const double *H, const double *M, int f, double *u)
+{
+    const double h = H[f];
+    if (h > s->c.h_dry) {
+        const double r = 1.0 / h;
+        u[0] = M[3 * f] * r, u[1] = M[3 * f + 1] * r, u[2] = M[3 * f + 2] * r;
+    } else
+        u[0] = u[1] = u[2] = 0.0;
+}
+
+/* Active set: faces with h > 0 (owned and ghost) and two rings of
+ * neighbours; their edges.  act_f lists owned faces first (n_act_owned). */
+static void build_active(gf_surface *s)
+{
+    const size_t nt = s->nt, nf = s->m.n_faces;
+    const unsigned st = ++s->stamp;
+    size_t nr = 0;
+    for (size_t f = 0; f < nt; ++f)
+        if (s->h[f] > 0.0) {
+            s->mark_g[f] = st;
+            s->ring[nr++] = (int)f;
+        }
+    for (int pass = 0; pass < 2; ++pass) {
+        const size_t end = nr;
+        for (size_t i = 0; i < end; ++i) {
+            const int f = s->ring[i];
+            for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+                const int e = s->fe[j];
+                const int o = s->m.owner[e], n = s->m.neighbour[e];
+                const int other = o == f ? n : o;
+                if (other >= 0 && s->mark_g[other] != st) {
+                    s->mark_g[other] = st;
+                    s->ring[nr++] = other;
+                }
+            }
+        }
+    }
+    /* owned first, then ghosts */
+    s->n_act_f = 0;
+    for (size_t i = 0; i < nr; ++i)
+        if ((size_t)s->ring[i] < nf)
+            s->act_f[s->n_act_f++] = s->ring[i];
+    s->n_act_owned = s->n_act_f;
+    for (size_t i = 0; i < nr; ++i)
+        if ((size_t)s->ring[i] >= nf)
+            s->act_f[s->n_act_f++] = s->ring[i];
+    for (size_t i = 0; i < s->n_act_f; ++i)
+        s->mark_f[s->act_f[i]] = st;
+    /* faces that left the set (dry, two rings from material): stage buffers
+     * equal to the state, no gradient, so that neighbours read true values */
+    for (size_t i = 0; i < s->n_prev_f; ++i) {
+        const int f = s->prev_f[i];
+        if (s->mark_f[f] == st)
+            continue;
+        s->h1[f] = s->h2[f] = s->h[f];
+        memcpy(s->m1 + 3 * f, s->mom + 3 * f, 3 * sizeof *s->m1);
+        memcpy(s->m2 + 3 * f, s->mom + 3 * f, 3 * sizeof *s->m2);
+        memset(s->grad + 3 * NV * f, 0, 3 * NV * sizeof *s->grad);
+    }
+    memcpy(s->prev_f, s->act_f, s->n_act_f * sizeof *s->prev_f);
+    s->n_prev_f = s->n_act_f;
+    s->n_act_e = 0;
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j];
+            if (s->mark_e[e] != st) {
+                s->mark_e[e] = st;
+                s->act_e[s->n_act_e++] = e;
+            }
+        }
+    }
+}
+
+/* Green–Gauss gradients of h and u over the face's edges (mean of the two
+ * sides; velocity only from wet neighbours), projected onto the tangent
+ * plane, Barth–Jespersen limited at the edge midpoints. */
+static void gradients(gf_surface *s, const double *H, const double *M)
+{
+    const gf_surface_mesh *m = &s->m;
+    const double hd = s->c.h_dry;
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
+        double *G = s->grad + 3 * NV * f;
+        memset(G, 0, 3 * NV * sizeof *G);
+        double q[NV], qmin[NV], qmax[NV];
+        q[0] = H[f];
+        velocity(s, H, M, f, q + 1);
+        const int wet = H[f] > hd;
+        for (int v = 0; v < NV; ++v)
+            qmin[v] = qmax[v] = q[v];
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j];
+            const int o = m->owner[e], n = m->neighbour[e];
+            const double sgn = o == f ? 1.0 : -1.0;
+            const double *L = m->edge_normal + 3 * e;
+            const double w = sgn * m->length[e];
+            double qe[NV];
+            const int other = o == f ? n : o;
+            if (other >= 0) {
+                double qn[NV];
+                qn[0] = H[other];
+                velocity(s, H, M, other, qn + 1);
+                const int nwet = H[other] > hd;
+                qe[0] = 0.5 * (q[0] + qn[0]);
+                qmin[0] = fmin(qmin[0], qn[0]);
+                qmax[0] = fmax(qmax[0], qn[0]);
+                for (int v = 1; v < NV; ++v) {
+                    if (nwet && wet) {
+                        qe[v] = 0.5 * (q[v] + qn[v]);
+                        qmin[v] = fmin(qmin[v], qn[v]);
+                        qmax[v] = fmax(qmax[v], qn[v]);
+                    } else
+                        qe[v] = q[v];
+                }
+            } else
+                memcpy(qe, q, sizeof qe);
+            for (int v = 0; v < NV; ++v)
+                for (int k = 0; k < 3; ++k)
+                    G[3 * v + k] += w * qe[v] * L[k];
+        }
+        const double rA = 1.0 / m->area[f];
+        const double *nf = m->normal + 3 * f;
+        for (int v = 0; v < NV; ++v) {
+            double *g = G + 3 * v;
+            const double gn = dot3(g, nf);
+            for (int k = 0; k < 3; ++k)
+                g[k] = (g[k] - gn * nf[k]) * rA;
+        }
+        if (!wet) /* no velocity slope on a face without velocity */
+            memset(G + 3, 0, 9 * sizeof *G);
+        /* Barth–Jespersen */
+        double alpha[NV] = {1.0, 1.0, 1.0, 1.0};
+        const double *xf = m->centre + 3 * f;
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j];
+            const double *xe = m->edge_centre + 3 * e;
+            const double r[3] = {xe[0] - xf[0], xe[1] - xf[1], xe[2] - xf[2]};
+            const int other = m->owner[e] == f ? m->neighbour[e] : m->owner[e];
+            /* towards a dry neighbour the velocity is extrapolated, not
+             * bounded: the thin tip of a front accelerates to u + 2c */
+            const int nv = (other >= 0 && H[other] <= hd) ? 1 : NV;
+            for (int v = 0; v < nv; ++v) {
+                const double d = dot3(G + 3 * v, r);
+                if (d > 0.0)
+                    alpha[v] = fmin(alpha[v], (qmax[v] - q[v]) / d);
+                else if (d < 0.0)
+                    alpha[v] = fmin(alpha[v], (qmin[v] - q[v]) / d);
+            }
+        }
+        for (int v = 0; v < NV; ++v)
+            for (int k = 0; k < 3; ++k)
+                G[3 * v + k] *= fmax(0.0, alpha[v]);
+    }
+}
+
+/* Side state at edge e of face f: h, velocity (3D), reconstructed when
+ * `rec` (owned active faces and ghosts carry gradients). */
+static inline void side_state(const gf_surface *s, const double *H, const double *M, int f, int e, int rec,
+                              double *h, double *u)
+{
+    *h = H[f];
+    velocity(s, H, M, f, u);
+    if (!rec)
+        return;
+    const double *G = s->grad + 3 * NV * f, *xf = s->m.centre + 3 * f, *xe = s->m.edge_centre + 3 * e;
+    const double r[3] = {xe[0] - xf[0], xe[1] - xf[1], xe[2] - xf[2]};
+    if (rec == 2) /* edge towards a dry face: the face value, so that the */
+        return;   /* limiter cannot reconstruct the tip of a front to zero */
+    *h += dot3(G, r);
+    if (*h < 0.0) /* round-off of the limiter */
+        *h = 0.0;
+    if (H[f] > s->c.h_dry)
+        for (int k = 0; k < 3; ++k)
+            u[k] += dot3(G + 3 * (k + 1), r);
+}
+
+/* HLL flux of (h, h u_nu, h u_t) with flux (h u_nu, h u_nu^2 + a h^2/2,
+ * h u_nu u_t); speeds: Davis/Einfeldt bounds with the two-rarefaction
+ * middle state, Toro's dry-bed speeds.  Returns the largest |speed|.  *fpress
+ * is the pressure part of the normal momentum flux. */
+static inline double hll(double hl, double ul, double vl, double al, double hr, double ur, double vr,
+                         double ar, double *F, double *fpress)
+{
+    const double cl = sqrt(al * hl), cr = sqrt(ar * hr);
+    double sl, sr;
+    if (hl <= 0.0 && hr <= 0.0) {
+        F[0] = F[1] = F[2] = *fpress = 0.0;
+        return 0.0;
+    }
+    if (hl <= 0.0) {
+        sl = ur - 2.0 * cr;
+        sr = ur + cr;
+    } else if (hr <= 0.0) {
+        sl = ul - cl;
+        sr = ul + 2.0 * cl;
+    } else {
+        const double us = 0.5 * (ul + ur) + cl - cr, cs = fmax(0.0, 0.5 * (cl + cr) + 0.25 * (ul - ur));
+        sl = fmin(fmin(ul - cl, ur - cr), us - cs);
+        sr = fmax(fmax(ul + cl, ur + cr), us + cs);
+    }
+    const double pl = 0.5 * al * hl * hl, pr = 0.5 * ar * hr * hr;
+    if (sl >= 0.0) {
+        F[0] = hl * ul;
+        F[1] = hl * ul * ul + pl;
+        F[2] = hl * ul * vl;
+        *fpress = pl;
+        return fabs(sr);
+    }
+    if (sr <= 0.0) {
+        F[0] = hr * ur;
+        F[1] = hr * ur * ur + pr;
+        F[2] = hr * ur * vr;
+        *fpress = pr;
+        return fabs(sl);
+    }
+    const double r = 1.0 / (sr - sl), ss = sl * sr;
+    F[0] = (sr * hl * ul - sl * hr * ur + ss * (hr - hl)) * r;
+    F[1] = (sr * (hl * ul * ul + pl) - sl * (hr * ur * ur + pr) + ss * (hr * ur - hl * ul)) * r;
+    F[2] = (sr * hl * ul * vl - sl * hr * ur * vr + ss * (hr * vr - hl * vl)) * r;
+    *fpress = (sr * pl - sl * pr) * r;
+    return fmax(-sl, sr);
+}
+
+/* Flux of edge e from the stage state (H, M): fh, fm (3D), fp (pressure
+ * along nu); per unit length. */
+static void edge_flux(gf_surface *s, const double *H, const double *M, int e, int order2)
+{
+    const gf_surface_mesh *m = &s->m;
+    const double *fr = s->frame + 12 * e, *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
+    const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
+    const unsigned st = s->stamp;
+    double *fm = s->fm + 3 * e;
+    double hl, ul[3], F[3], fpress;
+    const int rest_l = M[3 * o] == 0.0 && M[3 * o + 1] == 0.0 && M[3 * o + 2] == 0.0;
+    if (kind == GF_EDGE_INTERNAL) {
+        const int rest = rest_l && M[3 * n] == 0.0 && M[3 * n + 1] == 0.0 && M[3 * n + 2] == 0.0;
+        if (rest) {
+            /* Both sides at rest: no mass crosses, and each side feels the
+             * pressure a_f h_f h_N / 2.  It equals a h^2/2 (the HLL pressure)
+             * between equal states, and its sum over a face's edges is
+             * A a_f h_f grad h (Green–Gauss, sum_e nu_e L_e = 0), so the
+             * force on a face at rest is A a_f h_f (grad h - g_s/a_f):
+             * friction holds a face exactly when the discrete free-surface
+             * slope is admissible, however thin the face (kinetic paper,
+             * Def. 1, in 2D).  Momentum is not exchanged conservatively
+             * across such an edge; nothing moves there. */
+            const double po = 0.5 * s->a[o] * H[o] * H[n], pn = 0.5 * s->a[n] * H[n] * H[o];
+            s->fh[e] = 0.0;
+            s->fp[e] = po;
+            s->dpn[e] = pn - po;
+            for (int k = 0; k < 3; ++k)
+                fm[k] = po * nu[k];
+            return;
+        }
+        double hr, ur[3];
+        const int rec = order2 && !s->first[e], hd = s->c.h_dry;
+        const int dry_o = H[o] <= s->c.h_dry, dry_n = H[n] <= s->c.h_dry;
+        side_state(s, H, M, o, e, rec ? (dry_n ? 2 : 1) : 0, &hl, ul);
+        side_state(s, H, M, n, e, rec && ((size_t)n >= m->n_faces || s->mark_f[n] == st) ? (dry_o ? 2 : 1) : 0,
+                   &hr, ur);
+        (void)hd;
+        hll(hl, dot3(ul, nul), dot3(ul, t), s->a[o], hr, dot3(ur, nur), dot3(ur, t), s->a[n], F, &fpress);
+    } else {
+        side_state(s, H, M, o, e, order2 && !s->first[e], &hl, ul);
+        const double un = dot3(ul, nul), ut = dot3(ul, t), p = 0.5 * s->a[o] * hl * hl;
+        if (kind == GF_EDGE_WALL) { /* mirror state: no mass, pressure and reflection */
+            hll(hl, un, ut, s->a[o], hl, -un, ut, s->a[o], F, &fpress);
+            F[0] = 0.0;
+            F[2] = 0.0;
+        } else if (kind == GF_EDGE_OUTFLOW) {
+            if (un > 0.0) {
+                F[0] = hl * un, F[1] = hl * un * un + p, F[2] = hl * un * ut;
+            } else
+                F[0] = 0.0, F[1] = p, F[2] = 0.0;
+            fpress = p;
+        } else { /* inflow: the flux of the prescribed state */
+            const double *b = s->inflow + 4 * e, hb = b[0];
+            const double ub = dot3(b + 1, nul), vb = dot3(b + 1, t), pbf = 0.5 * s->a[o] * hb * hb;
+            F[0] = hb * ub, F[1] = hb * ub * ub + pbf, F[2] = hb * ub * vb;
+            fpress = pbf;
+        }
+    }
+    s->fh[e] = F[0];
+    s->fp[e] = fpress;
+    s->dpn[e] = 0.0;
+    for (int k = 0; k < 3; ++k)
+        fm[k] = F[1] * nu[k] + F[2] * t[k];
+}
+
+static void accumulate(gf_surface *s)
+{
+    const gf_surface_mesh *m = &s->m;
+    const size_t nf = m->n_faces;
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
+        s->acc_h[f] = s->acc_pn[f] = 0.0;
+        s->acc_m[3 * f] = s->acc_m[3 * f + 1] = s->acc_m[3 * f + 2] = 0.0;
+    }
+    const unsigned st = s->stamp;
+    for (size_t i = 0; i < s->n_act_e; ++i) {
+        const int e = s->act_e[i];
+        const int o = m->owner[e], n = m->neighbour[e];
+        const double L = m->length[e], *fm = s->fm + 3 * e, *nu = s->frame + 12 * e;
+        if (s->mark_f[o] == st) {
+            s->acc_h[o] += L * s->fh[e];
+            s->acc_pn[o] += L * s->fp[e] * dot3(nu, m->normal + 3 * o);
+            for (int k = 0; k < 3; ++k)
+                s->acc_m[3 * o + k] += L * fm[k];
+        }
+        if (n >= 0 && (size_t)n < nf && s->mark_f[n] == st) {
+            const double dp = s->dpn[e];
+            s->acc_h[n] -= L * s->fh[e];
+            s->acc_pn[n] -= L * (s->fp[e] + dp) * dot3(nu, m->normal + 3 * n);
+            for (int k = 0; k < 3; ++k)
+                s->acc_m[3 * n + k] -= L * (fm[k] + dp * nu[k]);
+        }
+    }
+}
+
+/* One forward-Euler stage with implicit friction: (H, M) -> (Ho, Mo). */
+static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *Ho, double *Mo, double weight)
+{
+    const gf_surface_mesh *m = &s->m;
+    const gf_surface_config *c = &s->c;
+    gf_status st;
+    if ((st = exchange(s, H, 1)) || (st = exchange(s, M, 3)) || (st = exchange(s, s->a, 1)))
+        return st;
+    const int order2 = c->order == 2;
+    if (order2) {
+        gradients(s, H, M);
+        if ((st = exchange(s, s->grad, 3 * NV)))
+            return st;
+    }
+    for (size_t i = 0; i < s->n_act_e; ++i)
+        s->first[s->act_e[i]] = 0;
+    for (size_t i = 0; i < s->n_act_e; ++i)
+        edge_flux(s, H, M, s->act_e[i], order2);
+    const double tiny = 1e-13 * s->h_scale;
+    for (int pass = 0;; ++pass) {
+        accumulate(s);
+        int bad = 0;
+        for (size_t i = 0; i < s->n_act_owned; ++i) {
+            const int f = s->act_f[i];
+            const double hn = H[f] - dt / m->area[f] * s->acc_h[f];
+            if (hn < -tiny || (hn < 0.0 && pass < 3 && order2)) {
+                if (pass >= 3 || !order2)
+                    return gf_fail(GF_EPHYS, "surface scheme: thickness %g in face %d after a step of %g s; "
+                                             "lower the Courant number", hn, f, dt);
+                for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+                    const int e = s->fe[j];
+                    if (!s->first[e]) {
+                        s->first[e] = 1;
+                        s->st.first_order_edges++;
+                        edge_flux(s, H, M, e, order2);
+                    }
+                }
+                bad = 1;
+            }
+        }
+        if (!bad)
+            break;
+    }
+    /* boundary volumes of this stage */
+    for (size_t i = 0; i < s->n_act_e; ++i) {
+        const int e = s->act_e[i];
+        if (m->neighbour[e] < 0)
+            s->edge_vol_step[e] += weight * dt * m->length[e] * s->fh[e];
+    }
+    const double gm = s->gmag;
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
+        const double rA = 1.0 / m->area[f], h = H[f], *nf = m->normal + 3 * f;
+        double hn = h - dt * rA * s->acc_h[f];
+        if (hn < 0.0) {
+            s->st.roundoff_faces++;
+            s->st.roundoff_volume += -hn * m->area[f];
+            hn = 0.0;
+        }
+        Ho[f] = hn;
+        /* div F per unit area; p_b/rho from the normal projection, eq. (33) */
+        const double *acc = s->acc_m + 3 * f;
+        const double ndiv = dot3(acc, nf) * rA, npress = s->acc_pn[f] * rA;
+        double pbr = -h * dot3(c->g, nf);
+        if (c->centrifugal)
+            pbr += ndiv - npress;
+        if (c->lateral_feedback)
+            pbr += npress;
+        if (pbr < 0.0 || h <= c->h_dry)
+            pbr = h > c->h_dry ? 0.0 : fmax(0.0, -h * dot3(c->g, nf));
+        if (f < (int)m->n_faces)
+            s->pb[f] = c->rho * pbr;
+        double ms[3];
+        for (int k = 0; k < 3; ++k)
+            ms[k] = M[3 * f + k] + dt * (h * c->g[k] - acc[k] * rA);
+        const double mn = dot3(ms, nf);
+        for (int k = 0; k < 3; ++k)
+            ms[k] -= mn * nf[k]; /* tangential part, eq. (35) */
+        double *mo = Mo + 3 * f;
+        const double gn = -dot3(c->g, nf);
+        if (hn > c->h_dry) {
+            const double Mag = sqrt(dot3(ms, ms));
+            double speed = 0.0;
+            if (Mag > 0.0) {
+                const gf_friction_state fs = {hn, 0.0, c->rho * pbr, c->rho, gm};
+                if ((st = gf_friction_implicit_speed(&c->friction, &fs, Mag, dt, &speed)))
+                    return st;
+            }
+            const double r = Mag > 0.0 ? hn * speed / Mag : 0.0;
+            if (Mag > 0.0 && speed == 0.0)
+                s->st.stopped_faces++;
+            for (int k = 0; k < 3; ++k)
+                mo[k] = ms[k] * r;
+            s->a[f] = h > c->h_dry ? pbr / h : fmax(0.0, gn);
+        } else {
+            mo[0] = mo[1] = mo[2] = 0.0;
+            s->a[f] = fmax(0.0, gn);
+        }
+    }
+    return GF_SUCCESS;
+}
+
+static void copy_active(gf_surface *s, const double *h, const double *m, double *ho, double *mo)
+{
+    for (size_t i = 0; i < s->n_act_f; ++i) {
+        const int f = s->act_f[i];
+        ho[f] = h[f];
+        mo[3 * f] = m[3 * f], mo[3 * f + 1] = m[3 * f + 1], mo[3 * f + 2] = m[3 * f + 2];
+    }
+}
+
+/* One SSP-RK2 step; the state (h, mom) changes only on success. */
+static gf_status step_once(gf_surface *s, double dt)
+{
+    gf_status st;
+    build_active(s);
+    for (size_t i = 0; i < s->n_act_e; ++i)
+        s->edge_vol_step[s->act_e[i]] = 0.0;
+    for (size_t i = 0; i < s->n_act_f; ++i)
+        s->a_save[s->act_f[i]] = s->a[s->act_f[i]];
+    copy_active(s, s->h, s->mom, s->h1, s->m1);
+    if (!(st = stage(s, dt, s->h, s->mom, s->h1, s->m1, 0.5))) {
+        copy_active(s, s->h1, s->m1, s->h2, s->m2);
+        st = stage(s, dt, s->h1, s->m1, s->h2, s->m2, 0.5);
+    }
+    if (st) {
+        for (size_t i = 0; i < s->n_act_f; ++i)
+            s->a[s->act_f[i]] = s->a_save[s->act_f[i]];
+        return st;
+    }
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
+        s->h[f] = 0.5 * (s->h[f] + s->h2[f]);
+        for (int k = 0; k < 3; ++k)
+            s->mom[3 * f + k] = 0.5 * (s->mom[3 * f + k] + s->m2[3 * f + k]);
+    }
+    for (size_t i = 0; i < s->n_act_e; ++i) {
+        const int e = s->act_e[i];
+        s->edge_vol[e] += s->edge_vol_step[e];
+    }
+    s->st.steps++;
+    s->st.face_updates += s->n_act_owned;
+    s->st.active_faces = s->n_act_owned;
+    return GF_SUCCESS;
+}
+
+/* A step whose stage would make a thickness negative even at first order
+ * (the wave speeds grew within the step) is repeated as two half steps. */
+static gf_status step_split(gf_surface *s, double dt, int depth)
+{
+    gf_status st = step_once(s, dt);
+    if (st != GF_EPHYS || depth >= 6)
+        return st;
+    s->st.halved_steps++;
+    if ((st = step_split(s, 0.5 * dt, depth + 1)))
+        return st;
+    return step_split(s, 0.5 * dt, depth + 1);
+}
+
+gf_status gf_surface_step(gf_surface *s, double dt)
+{
+    if (!s || !(dt >= 0.0) || !isfinite(dt))
+        return gf_fail(GF_EDOM, "surface scheme: time step %g (must be finite, >= 0)", dt);
+    if (dt == 0.0)
+        return GF_SUCCESS;
+    return step_split(s, dt, 0);
+}
+
+gf_status gf_surface_max_dt(gf_surface *s, double *dt)
+{
+    gf_status st;
+    if ((st = exchange(s, s->h, 1)) || (st = exchange(s, s->mom, 3)) || (st = exchange(s, s->a, 1)))
+        return st;
+    build_active(s);
+    const gf_surface_mesh *m = &s->m;
+    double best = HUGE_VAL;
+    /* per-face sum of L_e s_e with s_e <= max|u| + 2 max c over the two sides,
+     * a bound of every HLL speed above (Toro's dry speed u + 2c included) */
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
+        double sum = 0.0, uf[3];
+        velocity(s, s->h, s->mom, f, uf);
+        const double sf = sqrt(dot3(uf, uf)), cf = sqrt(s->a[f] * s->h[f]);
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j];
+            const int other = m->owner[e] == f ? m->neighbour[e] : m->owner[e];
+            double sp = sf, cm = cf;
+            if (other >= 0) {
+                double un[3];
+                velocity(s, s->h, s->mom, other, un);
+                sp = fmax(sp, sqrt(dot3(un, un)));
+                cm = fmax(cm, sqrt(s->a[other] * s->h[other]));
+            } else if (m->kind[e] == GF_EDGE_INFLOW) {
+                const double *b = s->inflow + 4 * e;
+                sp = fmax(sp, sqrt(dot3(b + 1, b + 1)));
+                cm = fmax(cm, sqrt(s->a[f] * b[0]));
+            }
+            sum += m->length[e] * (sp + 2.0 * cm);
+        }
+        if (sum > 0.0)
+            best = fmin(best, 2.0 * s->c.courant * m->area[f] / sum);
+    }
+    *dt = best;
+    return GF_SUCCESS;
+}
+
+const double *gf_surface_h(const gf_surface *s) { return s->h; }
+const double *gf_surface_momentum(const gf_surface *s) { return s->mom; }
+const double *gf_surface_pb(const gf_surface *s) { return s->pb; }
+const double *gf_surface_edge_volume(const gf_surface *s) { return s->edge_vol; }
+
+double gf_surface_volume(const gf_surface *s)
+{
+    double v = 0.0;
+    for (size_t f = 0; f < s->m.n_faces; ++f)
+        v += s->m.area[f] * s->h[f];
+    return v;
+}
+
+void gf_surface_get_stats(const gf_surface *s, gf_surface_stats *st) { *st = s->st; }
