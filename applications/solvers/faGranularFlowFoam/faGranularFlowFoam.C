@@ -40,6 +40,7 @@ Usage
 #include "relaxConsistent.H"
 #include "fixFacesAtRest.H"
 #include "granularBoundaries.H"
+#include "explicitSurfaceScheme.H"
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -88,6 +89,12 @@ int main(int argc, char *argv[])
     label nSteps = 0;
     label nSlowSteps = 0;           // accepted with the iteration cap reached
     label nRetries = 0;             // steps repeated with half the time step
+
+    if (explicitScheme)
+    {
+        #include "explicitLoop.H"
+        return 0;
+    }
 
     while (runTime.run())
     {

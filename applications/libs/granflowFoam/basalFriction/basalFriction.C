@@ -3,7 +3,7 @@
 
 #include <string>
 
-Foam::granflow::basalFriction::basalFriction(const dictionary& dict)
+Foam::granflow::basalFriction::basalFriction(const dictionary& dict, bool exactCoulomb)
 {
     if (!dict.found("frictionLaw"))
     {
@@ -64,14 +64,15 @@ Foam::granflow::basalFriction::basalFriction(const dictionary& dict)
     // u0 = 0 (exact Coulomb) is not usable by the implicit scheme: its
     // coefficient nu = tau/|u| is unbounded at rest (a division by zero)
     double u0;
-    if (gf_friction_get(&law_, "u0", &u0) == GF_SUCCESS && !(u0 > 0))
+    if (!exactCoulomb && gf_friction_get(&law_, "u0", &u0) == GF_SUCCESS && !(u0 > 0))
     {
         FatalIOErrorInFunction(coeffs)
             << "Invalid entry " << coeffsName << "/u0 " << u0 << ": the implicit finite-area"
             << " scheme needs u0 > 0 (allowed (0, 1] m/s): with u0 = 0 (exact Coulomb) the"
             << " friction coefficient nu = tau_b/(rho |u|) is infinite at rest. Use the"
             << " regularised value of the paper's Table 1 (1e-4 m/s) and staticFriction on"
-            << " for deposits exactly at rest" << exit(FatalIOError);
+            << " for deposits exactly at rest, or the explicit scheme (faSolution granularFlow/scheme"
+            << " explicit), which takes u0 = 0" << exit(FatalIOError);
     }
     if (gf_friction_check(&law_) != GF_SUCCESS)
     {

@@ -50,14 +50,14 @@ bool Foam::granflow::granularModel::readSwitch(const word& key, bool deflt) cons
 }
 
 
-Foam::granflow::granularModel::granularModel(const dictionary& dict)
+Foam::granflow::granularModel::granularModel(const dictionary& dict, bool exactCoulomb)
 :
     dict_(dict),
     rho_(readScalar("rho", 1e-6, 1e6)),
     xi_(1),
     hMin_(1e-6),
     earthPressure_(),
-    friction_(dict),
+    friction_(dict, exactCoulomb),
     lateralPressure_(readSwitch("lateralPressure")),
     centrifugalPressure_(readSwitch("centrifugalPressure")),
     lateralPressureFeedback_(readSwitch("lateralPressureFeedback")),

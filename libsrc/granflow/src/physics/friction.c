@@ -59,12 +59,10 @@ static void mu_i_eval(const double *p, const gf_friction_state *s, gf_friction_r
     const double mu_s = p[0], mu_2 = p[1], I0 = p[2], d = p[3], rho_p = p[4], u0 = p[5];
     double mu = mu_s;
     if (s->pb > 0.0 && s->speed > 0.0) {
-        if (s->h > 0.0) {
-            const double I = 2.5 * s->speed * d / (s->h * sqrt(s->pb / rho_p)); /* eq. 26 */
-            mu = mu_s + (mu_2 - mu_s) * I / (I0 + I);                          /* eq. 25 */
-        } else {
-            mu = mu_2; /* I -> infinity */
-        }
+        /* I = num/den, eq. 26; I/(I0 + I) = num/(I0 den + num), eq. 25, has
+         * no overflow or 0/0 for a vanishing h or p_b (I -> infinity: mu_2) */
+        const double num = 2.5 * s->speed * d, den = s->h * sqrt(s->pb / rho_p);
+        mu = mu_s + (mu_2 - mu_s) * num / (I0 * den + num);
     }
     coulomb_part(mu, u0, s, &r->tau, &r->nu);
 }

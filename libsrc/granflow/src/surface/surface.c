@@ -455,11 +455,13 @@ static void gradients(gf_surface *s, const double *H, const double *M)
              * bounded: the thin tip of a front accelerates to u + 2c */
             const int nv = (other >= 0 && H[other] <= hd) ? 1 : NV;
             for (int v = 0; v < nv; ++v) {
+                /* alpha = min(alpha, room/d), divided only when the ratio is
+                 * below alpha <= 1 (no overflow for a denormal slope) */
                 const double d = dot3(G + 3 * v, r);
-                if (d > 0.0)
-                    alpha[v] = fmin(alpha[v], (qmax[v] - q[v]) / d);
-                else if (d < 0.0)
-                    alpha[v] = fmin(alpha[v], (qmin[v] - q[v]) / d);
+                if (d > 0.0 && qmax[v] - q[v] < alpha[v] * d)
+                    alpha[v] = (qmax[v] - q[v]) / d;
+                else if (d < 0.0 && qmin[v] - q[v] > alpha[v] * d)
+                    alpha[v] = (qmin[v] - q[v]) / d;
             }
         }
         for (int v = 0; v < NV; ++v)
