@@ -36,8 +36,9 @@
  *  4. friction: gf_friction_implicit_speed per face (exact Coulomb stopping:
  *     a face whose driving force friction can hold stops within the stage).
  *
- * Positivity: with Co <= 0.5 (Co = dt sum_e L_e s_e / (2 A), s_e the edge's
- * largest wave speed) the first-order update keeps h >= 0; a face that the
+ * Positivity: with Co <= 0.5 (Co = dt sum_e L_e s_e / (2 A), s_e the HLL
+ * wave speed leaving the face through edge e, of the first-order states)
+ * the first-order update keeps h >= 0; a face that the
  * reconstructed fluxes would drive negative has its edges recomputed at
  * first order (counted).  Mass: every edge flux leaves one face and enters
  * the other, so the volume changes only through boundary edges, whose

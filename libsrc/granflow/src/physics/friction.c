@@ -289,6 +289,21 @@ gf_status gf_friction_implicit_speed(const gf_friction *f, const gf_friction_sta
         *speed = b < 0.0 ? (disc - b) / (2.0 * h) : 2.0 * M * u0 / (disc + b);
         return GF_SUCCESS;
     }
+    /* mu(I), u0 = 0: tau = p (mu_s + (mu_2 - mu_s) k s/(A + k s)), k = 5/2 d,
+     * A = I_0 h sqrt(p_b/rho_p) (eqs. 24-26); times (A + k s) the equation
+     * is the quadratic h k s^2 + (h A + dt p mu_2 k - M k) s + A (dt p mu_s - M) = 0 */
+    if (f->type == gf_friction_mu_i && f->p[5] == 0.0 && s->pb > 0.0) {
+        const double p = s->pb / s->rho, mus = f->p[0], mu2 = f->p[1], k = 2.5 * f->p[3];
+        const double A = f->p[2] * h * sqrt(s->pb / f->p[4]);
+        if (dt * p * mus >= M) {
+            *speed = 0.0;
+            return GF_SUCCESS;
+        }
+        const double a2 = h * k, a1 = h * A + dt * p * mu2 * k - M * k, a0 = A * (dt * p * mus - M);
+        const double disc = sqrt(a1 * a1 - 4.0 * a2 * a0); /* a0 < 0: two real roots, one > 0 */
+        *speed = a1 < 0.0 ? (disc - a1) / (2.0 * a2) : -2.0 * a0 / (disc + a1);
+        return GF_SUCCESS;
+    }
     const double tau0 = tau_at(f, s, 0.0);
     if (dt * tau0 >= M) {
         *speed = 0.0;

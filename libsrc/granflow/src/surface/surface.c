@@ -23,6 +23,7 @@ struct gf_surface {
     /* state and stage buffers (nt, 3 nt) */
     double *h, *mom, *h1, *m1, *h2, *m2;
     double *a;    /* normal acceleration p_b/(rho h) per face (nt) */
+    double *u;    /* velocity of the stage state per face (3 nt; 0 where h <= h_dry) */
     double *pb;   /* n_faces */
     double *grad; /* 3 NV per face (nt) */
     /* accumulators per owned face */
@@ -38,8 +39,14 @@ struct gf_surface {
     size_t n_act_f, n_act_e, n_act_owned, n_prev_f;
     double *a_save;
     double h_scale;
+    double u_slow; /* speed below which a face next to one at rest is slow: dt |g| */
     gf_surface_stats st;
 };
+
+/* branch-free min/max for the kernels (finite arguments; fmin/fmax are
+ * library calls without -ffinite-math-only) */
+static inline double gmin(double a, double b) { return a < b ? a : b; }
+static inline double gmax(double a, double b) { return a > b ? a : b; }
 
 static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static inline void cross3(const double *a, const double *b, double *c)
@@ -75,7 +82,7 @@ void gf_surface_free(gf_surface *s)
     if (!s)
         return;
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->h,        s->mom,  s->h1,     s->m1,
-                    s->h2,       s->m2,     s->a,      s->pb,       s->grad, s->acc_h,  s->acc_m,
+                    s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
                     s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn,       s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
                     s->act_e,    s->ring,     s->prev_f, s->a_save};
@@ -185,8 +192,8 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->fe_start = calloc(nt + 1, sizeof *s->fe_start);
     s->fe = malloc((2 * ne + 1) * sizeof *s->fe);
     s->frame = malloc((12 * ne + 1) * sizeof *s->frame);
-    double **d3[] = {&s->mom, &s->m1, &s->m2};
-    for (int i = 0; i < 3; ++i)
+    double **d3[] = {&s->mom, &s->m1, &s->m2, &s->u};
+    for (int i = 0; i < 4; ++i)
         *d3[i] = calloc(3 * nt, sizeof(double));
     double **d1[] = {&s->h, &s->h1, &s->h2, &s->a};
     for (int i = 0; i < 4; ++i)
@@ -212,7 +219,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->act_e = malloc((ne + 1) * sizeof *s->act_e);
     s->prev_f = malloc(nt * sizeof *s->prev_f);
     s->a_save = malloc(nt * sizeof *s->a_save);
-    if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->h || !s->h1 || !s->h2 ||
+    if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
         !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save) {
@@ -277,7 +284,7 @@ gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *mom
             return gf_fail(GF_EDOM, "surface scheme: initial thickness h = %g in face %zu (must be finite, >= 0)",
                            h[f], f);
         s->h[f] = h[f];
-        s->h_scale = fmax(s->h_scale, h[f]);
+        s->h_scale = gmax(s->h_scale, h[f]);
         double *m = s->mom + 3 * f;
         const double *n = s->m.normal + 3 * f;
         for (int k = 0; k < 3; ++k) {
@@ -370,6 +377,7 @@ static void build_active(gf_surface *s)
         memcpy(s->m1 + 3 * f, s->mom + 3 * f, 3 * sizeof *s->m1);
         memcpy(s->m2 + 3 * f, s->mom + 3 * f, 3 * sizeof *s->m2);
         memset(s->grad + 3 * NV * f, 0, 3 * NV * sizeof *s->grad);
+        memset(s->u + 3 * f, 0, 3 * sizeof *s->u);
     }
     memcpy(s->prev_f, s->act_f, s->n_act_f * sizeof *s->prev_f);
     s->n_prev_f = s->n_act_f;
@@ -389,7 +397,7 @@ static void build_active(gf_surface *s)
 /* Green–Gauss gradients of h and u over the face's edges (mean of the two
  * sides; velocity only from wet neighbours), projected onto the tangent
  * plane, Barth–Jespersen limited at the edge midpoints. */
-static void gradients(gf_surface *s, const double *H, const double *M)
+static void gradients(gf_surface *s, const double *H)
 {
     const gf_surface_mesh *m = &s->m;
     const double hd = s->c.h_dry;
@@ -399,7 +407,7 @@ static void gradients(gf_surface *s, const double *H, const double *M)
         memset(G, 0, 3 * NV * sizeof *G);
         double q[NV], qmin[NV], qmax[NV];
         q[0] = H[f];
-        velocity(s, H, M, f, q + 1);
+        memcpy(q + 1, s->u + 3 * f, 3 * sizeof *q);
         const int wet = H[f] > hd;
         for (int v = 0; v < NV; ++v)
             qmin[v] = qmax[v] = q[v];
@@ -414,16 +422,16 @@ static void gradients(gf_surface *s, const double *H, const double *M)
             if (other >= 0) {
                 double qn[NV];
                 qn[0] = H[other];
-                velocity(s, H, M, other, qn + 1);
+                memcpy(qn + 1, s->u + 3 * other, 3 * sizeof *qn);
                 const int nwet = H[other] > hd;
                 qe[0] = 0.5 * (q[0] + qn[0]);
-                qmin[0] = fmin(qmin[0], qn[0]);
-                qmax[0] = fmax(qmax[0], qn[0]);
+                qmin[0] = gmin(qmin[0], qn[0]);
+                qmax[0] = gmax(qmax[0], qn[0]);
                 for (int v = 1; v < NV; ++v) {
                     if (nwet && wet) {
                         qe[v] = 0.5 * (q[v] + qn[v]);
-                        qmin[v] = fmin(qmin[v], qn[v]);
-                        qmax[v] = fmax(qmax[v], qn[v]);
+                        qmin[v] = gmin(qmin[v], qn[v]);
+                        qmax[v] = gmax(qmax[v], qn[v]);
                     } else
                         qe[v] = q[v];
                 }
@@ -466,7 +474,7 @@ static void gradients(gf_surface *s, const double *H, const double *M)
         }
         for (int v = 0; v < NV; ++v)
             for (int k = 0; k < 3; ++k)
-                G[3 * v + k] *= fmax(0.0, alpha[v]);
+                G[3 * v + k] *= gmax(0.0, alpha[v]);
     }
 }
 
@@ -475,8 +483,9 @@ static void gradients(gf_surface *s, const double *H, const double *M)
 static inline void side_state(const gf_surface *s, const double *H, const double *M, int f, int e, int rec,
                               double *h, double *u)
 {
+    (void)M;
     *h = H[f];
-    velocity(s, H, M, f, u);
+    memcpy(u, s->u + 3 * f, 3 * sizeof *u);
     if (!rec)
         return;
     const double *G = s->grad + 3 * NV * f, *xf = s->m.centre + 3 * f, *xe = s->m.edge_centre + 3 * e;
@@ -489,6 +498,26 @@ static inline void side_state(const gf_surface *s, const double *H, const double
     if (H[f] > s->c.h_dry)
         for (int k = 0; k < 3; ++k)
             u[k] += dot3(G + 3 * (k + 1), r);
+}
+
+/* HLL speed bounds (sl, sr) of the first-order states across an edge, as in
+ * hll(). */
+static inline void hll_speeds(double hl, double ul, double cl, double hr, double ur, double cr, double *sl,
+                              double *sr)
+{
+    if (hl <= 0.0 && hr <= 0.0) {
+        *sl = *sr = 0.0;
+    } else if (hl <= 0.0) {
+        *sl = ur - 2.0 * cr;
+        *sr = ur + cr;
+    } else if (hr <= 0.0) {
+        *sl = ul - cl;
+        *sr = ul + 2.0 * cl;
+    } else {
+        const double us = 0.5 * (ul + ur) + cl - cr, cs = gmax(0.0, 0.5 * (cl + cr) + 0.25 * (ul - ur));
+        *sl = gmin(gmin(ul - cl, ur - cr), us - cs);
+        *sr = gmax(gmax(ul + cl, ur + cr), us + cs);
+    }
 }
 
 /* HLL flux of (h, h u_nu, h u_t) with flux (h u_nu, h u_nu^2 + a h^2/2,
@@ -504,17 +533,7 @@ static inline double hll(double hl, double ul, double vl, double al, double hr, 
         F[0] = F[1] = F[2] = *fpress = 0.0;
         return 0.0;
     }
-    if (hl <= 0.0) {
-        sl = ur - 2.0 * cr;
-        sr = ur + cr;
-    } else if (hr <= 0.0) {
-        sl = ul - cl;
-        sr = ul + 2.0 * cl;
-    } else {
-        const double us = 0.5 * (ul + ur) + cl - cr, cs = fmax(0.0, 0.5 * (cl + cr) + 0.25 * (ul - ur));
-        sl = fmin(fmin(ul - cl, ur - cr), us - cs);
-        sr = fmax(fmax(ul + cl, ur + cr), us + cs);
-    }
+    hll_speeds(hl, ul, cl, hr, ur, cr, &sl, &sr);
     const double pl = 0.5 * al * hl * hl, pr = 0.5 * ar * hr * hr;
     if (sl >= 0.0) {
         F[0] = hl * ul;
@@ -535,7 +554,7 @@ static inline double hll(double hl, double ul, double vl, double al, double hr, 
     F[1] = (sr * (hl * ul * ul + pl) - sl * (hr * ur * ur + pr) + ss * (hr * ur - hl * ul)) * r;
     F[2] = (sr * hl * ul * vl - sl * hr * ur * vr + ss * (hr * vr - hl * vl)) * r;
     *fpress = (sr * pl - sl * pr) * r;
-    return fmax(-sl, sr);
+    return gmax(-sl, sr);
 }
 
 /* Flux of edge e from the stage state (H, M): fh, fm (3D), fp (pressure
@@ -568,6 +587,30 @@ static void edge_flux(gf_surface *s, const double *H, const double *M, int e, in
             for (int k = 0; k < 3; ++k)
                 fm[k] = po * nu[k];
             return;
+        }
+        if (H[o] > s->c.h_dry && H[n] > s->c.h_dry) {
+            /* Two wet faces that are both slow (|u| < dt |g|, at most what
+             * one step of gravity gives; at rest included): the kinetic
+             * paper's Scheme 3 idea on the surface.  HLL's mass diffusion
+             * s_L s_R (h_R - h_L), of the size of the wave speed, would keep
+             * moving material that friction holds (deposits creeping at
+             * 1e-4 m/s); instead the mass flux is the donor flux of the mean
+             * normal velocity and each side feels the pressure of the rest
+             * edges above. */
+            const double *uo = s->u + 3 * o, *un = s->u + 3 * n, us2 = s->u_slow * s->u_slow;
+            if (dot3(uo, uo) < us2 && dot3(un, un) < us2) {
+                const double vo = dot3(uo, nul), vn = dot3(un, nur), vm = 0.5 * (vo + vn);
+                const int up = vm >= 0.0 ? o : n;
+                const double *uu = s->u + 3 * up, unu = up == o ? vo : vn, ut = dot3(uu, t);
+                const double po = 0.5 * s->a[o] * H[o] * H[n], pn = 0.5 * s->a[n] * H[n] * H[o];
+                const double fh = H[up] * vm;
+                s->fh[e] = fh;
+                s->fp[e] = po;
+                s->dpn[e] = pn - po;
+                for (int k = 0; k < 3; ++k)
+                    fm[k] = fh * (unu * nu[k] + ut * t[k]) + po * nu[k];
+                return;
+            }
         }
         double hr, ur[3];
         const int rec = order2 && !s->first[e], hd = s->c.h_dry;
@@ -642,9 +685,12 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     gf_status st;
     if ((st = exchange(s, H, 1)) || (st = exchange(s, M, 3)) || (st = exchange(s, s->a, 1)))
         return st;
+    for (size_t i = 0; i < s->n_act_f; ++i)
+        velocity(s, H, M, s->act_f[i], s->u + 3 * s->act_f[i]);
+    s->u_slow = dt * s->gmag;
     const int order2 = c->order == 2;
     if (order2) {
-        gradients(s, H, M);
+        gradients(s, H);
         if ((st = exchange(s, s->grad, 3 * NV)))
             return st;
     }
@@ -703,7 +749,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         if (c->lateral_feedback)
             pbr += npress;
         if (pbr < 0.0 || h <= c->h_dry)
-            pbr = h > c->h_dry ? 0.0 : fmax(0.0, -h * dot3(c->g, nf));
+            pbr = h > c->h_dry ? 0.0 : gmax(0.0, -h * dot3(c->g, nf));
         if (f < (int)m->n_faces)
             s->pb[f] = c->rho * pbr;
         double ms[3];
@@ -727,10 +773,10 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
                 s->st.stopped_faces++;
             for (int k = 0; k < 3; ++k)
                 mo[k] = ms[k] * r;
-            s->a[f] = h > c->h_dry ? pbr / h : fmax(0.0, gn);
+            s->a[f] = h > c->h_dry ? pbr / h : gmax(0.0, gn);
         } else {
             mo[0] = mo[1] = mo[2] = 0.0;
-            s->a[f] = fmax(0.0, gn);
+            s->a[f] = gmax(0.0, gn);
         }
     }
     return GF_SUCCESS;
@@ -809,32 +855,47 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
         return st;
     build_active(s);
     const gf_surface_mesh *m = &s->m;
+    const size_t nf = m->n_faces;
+    /* Positivity of the first-order update: the volume leaving face f through
+     * edge e in dt is at most dt L_e h_f s_out, s_out = max(0, s_R) for the
+     * owner and max(0, -s_L) for the neighbour (HLL's outgoing wave speeds of
+     * the first-order states); Co = dt sum_e L_e s_out / (2 A) <= 1/2 keeps
+     * h >= 0.  A wall's mirror state and an outflow's extrapolated state give
+     * the same bounds with u_R = -u_L or u_R = u_L. */
+    double *out = s->acc_pn; /* scratch per owned face */
+    for (size_t i = 0; i < s->n_act_owned; ++i)
+        out[s->act_f[i]] = 0.0;
+    for (size_t i = 0; i < s->n_act_e; ++i) {
+        const int e = s->act_e[i];
+        const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
+        const double *fr = s->frame + 12 * e;
+        double uo[3];
+        velocity(s, s->h, s->mom, o, uo);
+        const double hl = s->h[o], ul = dot3(uo, fr + 6), cl = sqrt(s->a[o] * hl);
+        double hr = hl, ur = -ul, cr = cl;
+        if (kind == GF_EDGE_INTERNAL) {
+            double un[3];
+            velocity(s, s->h, s->mom, n, un);
+            hr = s->h[n], ur = dot3(un, fr + 9), cr = sqrt(s->a[n] * hr);
+        } else if (kind == GF_EDGE_OUTFLOW) {
+            ur = ul;
+        } else if (kind == GF_EDGE_INFLOW) {
+            const double *b = s->inflow + 4 * e;
+            hr = b[0], ur = dot3(b + 1, fr + 6), cr = sqrt(s->a[o] * hr);
+        }
+        double sl, sr;
+        hll_speeds(hl, ul, cl, hr, ur, cr, &sl, &sr);
+        const double L = m->length[e];
+        if (s->mark_f[o] == s->stamp)
+            out[o] += L * gmax(0.0, sr);
+        if (n >= 0 && (size_t)n < nf && s->mark_f[n] == s->stamp)
+            out[n] += L * gmax(0.0, -sl);
+    }
     double best = HUGE_VAL;
-    /* per-face sum of L_e s_e with s_e <= max|u| + 2 max c over the two sides,
-     * a bound of every HLL speed above (Toro's dry speed u + 2c included) */
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
-        double sum = 0.0, uf[3];
-        velocity(s, s->h, s->mom, f, uf);
-        const double sf = sqrt(dot3(uf, uf)), cf = sqrt(s->a[f] * s->h[f]);
-        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
-            const int e = s->fe[j];
-            const int other = m->owner[e] == f ? m->neighbour[e] : m->owner[e];
-            double sp = sf, cm = cf;
-            if (other >= 0) {
-                double un[3];
-                velocity(s, s->h, s->mom, other, un);
-                sp = fmax(sp, sqrt(dot3(un, un)));
-                cm = fmax(cm, sqrt(s->a[other] * s->h[other]));
-            } else if (m->kind[e] == GF_EDGE_INFLOW) {
-                const double *b = s->inflow + 4 * e;
-                sp = fmax(sp, sqrt(dot3(b + 1, b + 1)));
-                cm = fmax(cm, sqrt(s->a[f] * b[0]));
-            }
-            sum += m->length[e] * (sp + 2.0 * cm);
-        }
-        if (sum > 0.0)
-            best = fmin(best, 2.0 * s->c.courant * m->area[f] / sum);
+        if (out[f] > 0.0)
+            best = gmin(best, 2.0 * s->c.courant * m->area[f] / out[f]);
     }
     *dt = best;
     return GF_SUCCESS;
