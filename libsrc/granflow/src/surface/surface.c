@@ -33,11 +33,14 @@ struct gf_surface {
     unsigned char *first;
     double *edge_vol, *edge_vol_step;
     double *inflow; /* per edge: h, u[3] */
+    int *inflow_edges;
+    size_t n_inflow;
     /* active set */
     unsigned *mark_f, *mark_e, *mark_g, stamp;
     int *act_f, *act_e, *ring, *prev_f;
     size_t n_act_f, n_act_e, n_act_owned, n_prev_f;
     double *a_save;
+    double *lvl; /* ring level for the parallel active set (nt) */
     double h_scale;
     double u_slow; /* speed below which a face next to one at rest is slow: dt |g| */
     gf_surface_stats st;
@@ -85,7 +88,7 @@ void gf_surface_free(gf_surface *s)
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
                     s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn,       s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
-                    s->act_e,    s->ring,     s->prev_f, s->a_save};
+                    s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
         free(bufs[i]);
     free(s);
@@ -219,13 +222,22 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->act_e = malloc((ne + 1) * sizeof *s->act_e);
     s->prev_f = malloc(nt * sizeof *s->prev_f);
     s->a_save = malloc(nt * sizeof *s->a_save);
+    s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
         !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
-        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save) {
+        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory for %zu faces", nt);
     }
+    s->inflow_edges = malloc((ne + 1) * sizeof *s->inflow_edges);
+    if (!s->inflow_edges) {
+        gf_surface_free(s);
+        return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
+    }
+    for (size_t e = 0; e < ne; ++e)
+        if (mesh->kind[e] == GF_EDGE_INFLOW)
+            s->inflow_edges[s->n_inflow++] = (int)e;
     /* CSR face -> edges */
     for (size_t e = 0; e < ne; ++e) {
         s->fe_start[mesh->owner[e] + 1]++;
@@ -329,9 +341,31 @@ static inline void velocity(const gf_surface *s, const double *H, const double *
         u[0] = u[1] = u[2] = 0.0;
 }
 
+/* Mark the unmarked neighbours of ring[a..b) and append them; returns the
+ * new end. */
+static size_t expand(gf_surface *s, size_t a, size_t b, size_t nr, unsigned st)
+{
+    for (size_t i = a; i < b; ++i) {
+        const int f = s->ring[i];
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j];
+            const int o = s->m.owner[e], n = s->m.neighbour[e];
+            const int other = o == f ? n : o;
+            if (other >= 0 && s->mark_g[other] != st) {
+                s->mark_g[other] = st;
+                s->ring[nr++] = other;
+            }
+        }
+    }
+    return nr;
+}
+
 /* Active set: faces with h > 0 (owned and ghost) and two rings of
- * neighbours; their edges.  act_f lists owned faces first (n_act_owned). */
-static void build_active(gf_surface *s)
+ * neighbours; their edges.  act_f lists owned faces first (n_act_owned).
+ * In parallel the first ring is exchanged before the second is grown, so
+ * that a face whose first-ring neighbour lies on another rank is active as
+ * it is in serial. */
+static gf_status build_active(gf_surface *s)
 {
     const size_t nt = s->nt, nf = s->m.n_faces;
     const unsigned st = ++s->stamp;
@@ -341,21 +375,32 @@ static void build_active(gf_surface *s)
             s->mark_g[f] = st;
             s->ring[nr++] = (int)f;
         }
-    for (int pass = 0; pass < 2; ++pass) {
-        const size_t end = nr;
-        for (size_t i = 0; i < end; ++i) {
-            const int f = s->ring[i];
-            for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
-                const int e = s->fe[j];
-                const int o = s->m.owner[e], n = s->m.neighbour[e];
-                const int other = o == f ? n : o;
-                if (other >= 0 && s->mark_g[other] != st) {
-                    s->mark_g[other] = st;
-                    s->ring[nr++] = other;
-                }
-            }
+    /* an inflow edge that brings material makes its face active */
+    for (size_t i = 0; i < s->n_inflow; ++i) {
+        const int e = s->inflow_edges[i], f = s->m.owner[e];
+        if (s->inflow[4 * e] > 0.0 && s->mark_g[f] != st) {
+            s->mark_g[f] = st;
+            s->ring[nr++] = f;
         }
     }
+    const size_t r0 = nr;
+    nr = expand(s, 0, r0, nr, st);
+    size_t r1 = nr;
+    if (s->m.n_ghosts > 0) {
+        double *lvl = s->lvl;
+        for (size_t f = 0; f < nf; ++f)
+            lvl[f] = s->mark_g[f] == st ? 1.0 : 3.0;
+        gf_status x = exchange(s, lvl, 1);
+        if (x)
+            return x;
+        for (size_t g = nf; g < nt; ++g)
+            if (lvl[g] <= 1.0 && s->mark_g[g] != st) {
+                s->mark_g[g] = st;
+                s->ring[nr++] = (int)g;
+            }
+        r1 = nr;
+    }
+    nr = expand(s, r0, r1, nr, st);
     /* owned first, then ghosts */
     s->n_act_f = 0;
     for (size_t i = 0; i < nr; ++i)
@@ -392,6 +437,7 @@ static void build_active(gf_surface *s)
             }
         }
     }
+    return GF_SUCCESS;
 }
 
 /* Green–Gauss gradients of h and u over the face's edges (mean of the two
@@ -795,7 +841,8 @@ static void copy_active(gf_surface *s, const double *h, const double *m, double 
 static gf_status step_once(gf_surface *s, double dt)
 {
     gf_status st;
-    build_active(s);
+    if ((st = exchange(s, s->h, 1)) || (st = build_active(s)))
+        return st;
     for (size_t i = 0; i < s->n_act_e; ++i)
         s->edge_vol_step[s->act_e[i]] = 0.0;
     for (size_t i = 0; i < s->n_act_f; ++i)
@@ -851,9 +898,9 @@ gf_status gf_surface_step(gf_surface *s, double dt)
 gf_status gf_surface_max_dt(gf_surface *s, double *dt)
 {
     gf_status st;
-    if ((st = exchange(s, s->h, 1)) || (st = exchange(s, s->mom, 3)) || (st = exchange(s, s->a, 1)))
+    if ((st = exchange(s, s->h, 1)) || (st = exchange(s, s->mom, 3)) || (st = exchange(s, s->a, 1)) ||
+        (st = build_active(s)))
         return st;
-    build_active(s);
     const gf_surface_mesh *m = &s->m;
     const size_t nf = m->n_faces;
     /* Positivity of the first-order update: the volume leaving face f through
