@@ -40,6 +40,24 @@ static inline double sm_norm(double *a)
     return l;
 }
 
+/* Edge e from node p to q with owner o (neighbour nb, kind kd): length,
+ * midpoint and the unit normal t x nn, oriented away from the owner's centre. */
+static inline void sm_edge(struct strip_mesh *sm, size_t e, const double *p, const double *q, int o, int nb,
+                           int kd, const double *nn)
+{
+    double t[3], v[3], r[3];
+    sm_sub(q, p, t);
+    sm->length[e] = sm_norm(t);
+    sm_cross(t, nn, v);
+    sm_norm(v);
+    for (int k = 0; k < 3; ++k)
+        sm->ecentre[3 * e + k] = 0.5 * (p[k] + q[k]), r[k] = sm->ecentre[3 * e + k] - sm->centre[3 * o + k];
+    if (v[0] * r[0] + v[1] * r[1] + v[2] * r[2] < 0)
+        v[0] = -v[0], v[1] = -v[1], v[2] = -v[2];
+    memcpy(sm->enormal + 3 * e, v, sizeof v);
+    sm->owner[e] = o, sm->neighbour[e] = nb, sm->kind[e] = kd;
+}
+
 /* kinds: edges at s0, s1, y0, y1 */
 static inline strip_mesh *strip_mesh_new(size_t nx, size_t ny, double s0, double s1, double y0, double y1,
                                          strip_zeta_fn zeta, void *ctx, const int kinds[4])
@@ -105,24 +123,14 @@ static inline strip_mesh *strip_mesh_new(size_t nx, size_t ny, double s0, double
                 o = (int)(j * nx + nx - 1), nb = -1, kd = kinds[1];
             else
                 o = (int)(j * nx + i - 1), nb = (int)(j * nx + i);
-            double t[3], nn[3], v[3];
-            sm_sub(q, p, t);
-            sm->length[e] = sm_norm(t);
+            double nn[3];
             const double *no = sm->normal + 3 * o;
             if (nb >= 0)
                 for (int k = 0; k < 3; ++k)
                     nn[k] = no[k] + sm->normal[3 * nb + k];
             else
                 memcpy(nn, no, sizeof nn);
-            sm_cross(t, nn, v);
-            sm_norm(v);
-            double r[3];
-            for (int k = 0; k < 3; ++k)
-                sm->ecentre[3 * e + k] = 0.5 * (p[k] + q[k]), r[k] = sm->ecentre[3 * e + k] - sm->centre[3 * o + k];
-            if (v[0] * r[0] + v[1] * r[1] + v[2] * r[2] < 0)
-                v[0] = -v[0], v[1] = -v[1], v[2] = -v[2];
-            memcpy(sm->enormal + 3 * e, v, sizeof v);
-            sm->owner[e] = o, sm->neighbour[e] = nb, sm->kind[e] = kd;
+            sm_edge(sm, e, p, q, o, nb, kd, nn);
         }
     /* edges of constant y: between (i, j-1) and (i, j), from node (i, j) to (i+1, j) */
     for (size_t j = 0; j <= ny; ++j)
@@ -135,17 +143,7 @@ static inline strip_mesh *strip_mesh_new(size_t nx, size_t ny, double s0, double
                 o = (int)((ny - 1) * nx + i), nb = -1, kd = kinds[3];
             else
                 o = (int)((j - 1) * nx + i), nb = (int)(j * nx + i);
-            double t[3], v[3], r[3];
-            sm_sub(q, p, t);
-            sm->length[e] = sm_norm(t);
-            sm_cross(t, sm->normal + 3 * o, v);
-            sm_norm(v);
-            for (int k = 0; k < 3; ++k)
-                sm->ecentre[3 * e + k] = 0.5 * (p[k] + q[k]), r[k] = sm->ecentre[3 * e + k] - sm->centre[3 * o + k];
-            if (v[0] * r[0] + v[1] * r[1] + v[2] * r[2] < 0)
-                v[0] = -v[0], v[1] = -v[1], v[2] = -v[2];
-            memcpy(sm->enormal + 3 * e, v, sizeof v);
-            sm->owner[e] = o, sm->neighbour[e] = nb, sm->kind[e] = kd;
+            sm_edge(sm, e, p, q, o, nb, kd, sm->normal + 3 * o);
         }
 #undef NODE
     gf_surface_mesh m = {nf, 0, ne, sm->area, sm->centre, sm->normal, sm->owner, sm->neighbour,
