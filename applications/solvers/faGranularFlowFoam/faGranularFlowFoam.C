@@ -187,7 +187,8 @@ int main(int argc, char *argv[])
         << " (linear solver " << tSolveUs << "), continuity " << tContinuity
         << " (linear solver " << tSolveH << "); outer iterations " << nIterTotal
         << "; total " << runTime.elapsedCpuTime() << nl;
-    Info<< "Outer iterations: " << nSlowSteps << " of " << nSteps << " steps accepted at the"
+    Info<< "Outer iterations: " << scalar(nIterTotal)/max(nSteps, label(1)) << " per step; "
+        << nSlowSteps << " of " << nSteps << " steps accepted at the"
         << " iteration cap (converging slowly, residuals below the rejection levels), "
         << nRetries << " steps repeated with half the time step" << nl;
     Info<< "Positivity: continuity re-solved with implicit Euler upwind in " << nEulerSteps

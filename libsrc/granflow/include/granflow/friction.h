@@ -146,7 +146,7 @@ double gf_friction_decelerate(double u, double decel_dt);
  * 0 exactly (Coulomb's static condition; with u0 = 0 tau(0) is the static
  * bound mu p_b/rho, with u0 > 0 it is 0 and material only creeps to rest).
  * Every law's tau is non-decreasing in s, so the root is unique; coulomb
- * (any u0) and mu_i with u0 = 0 are solved in closed form, the other laws
+ * (any u0), mu_i and voellmy with u0 = 0 are solved in closed form, the others
  * by Illinois regula falsi
  * with bisection steps, to 1e-14 relative.  s->speed is not
  * used.  GF_EDOM / GF_ENONFINITE for a negative or non-finite M, dt or state;

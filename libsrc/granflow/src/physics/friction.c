@@ -304,6 +304,18 @@ gf_status gf_friction_implicit_speed(const gf_friction *f, const gf_friction_sta
         *speed = a1 < 0.0 ? (disc - a1) / (2.0 * a2) : -2.0 * a0 / (disc + a1);
         return GF_SUCCESS;
     }
+    /* voellmy, u0 = 0: h s + dt (mu p + g s^2/xi) = M, a quadratic with
+     * a2 = dt g/xi, a1 = h, a0 = dt mu p - M < 0 for a moving face */
+    if (f->type == gf_friction_voellmy && f->p[2] == 0.0) {
+        const double mp = s->pb > 0.0 ? f->p[0] * s->pb / s->rho : 0.0, a0 = dt * mp - M;
+        if (a0 >= 0.0) {
+            *speed = 0.0;
+            return GF_SUCCESS;
+        }
+        const double a2 = dt * s->g / f->p[1];
+        *speed = -2.0 * a0 / (h + sqrt(h * h - 4.0 * a2 * a0));
+        return GF_SUCCESS;
+    }
     const double tau0 = tau_at(f, s, 0.0);
     if (dt * tau0 >= M) {
         *speed = 0.0;
