@@ -24,6 +24,7 @@
 
 #include "granflow/granflow.h"
 #include "granflow/sh1d.h"
+#include "granflow/verification.h"
 
 
 static void rp_init(double x, void *c, double *h, double *u)

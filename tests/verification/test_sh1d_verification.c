@@ -17,6 +17,7 @@
 #include "../gf_test.h"
 #include "granflow/granflow.h"
 #include "granflow/sh1d.h"
+#include "granflow/verification.h"
 
 
 static gf_sh1d *make(const gf_sh1d_type *t, const gf_sh1d_config *c, gf_sh1d_initial_fn f, void *ctx)

@@ -22,6 +22,7 @@
 #ifndef GRANFLOW_EXACT_H
 #define GRANFLOW_EXACT_H
 
+#include "granflow/source.h" /* gf_sh_beta */
 #include "granflow/status.h"
 
 #ifdef __cplusplus
@@ -123,9 +124,6 @@ gf_status gf_spreading_cap_stretch(const gf_spreading_cap *c, double t, double *
  * is negative or not finite. */
 gf_status gf_spreading_cap_sample(const gf_spreading_cap *c, double x, double t, double *h,
                                   double *u);
-
-/* beta of the dimensionless Savage–Hutter equations: epsilon K cos(zeta). */
-double gf_sh_beta(double epsilon, double k, double zeta);
 
 #ifdef __cplusplus
 }

@@ -11,6 +11,9 @@
 #include "granflow/exact.h"
 #include "granflow/kinetic1d.h"
 #include "granflow/dg1d.h"
+#include "granflow/sh1d.h"
+#include "granflow/surface.h"
+/* test and benchmark helpers: granflow/verification.h */
 
 #define GRANFLOW_VERSION "0.1.0"
 

@@ -150,17 +150,6 @@ double gf_sh1d_min_depth(const gf_sh1d *s);
 /* Largest |u| over the cell means. */
 double gf_sh1d_max_speed(const gf_sh1d *s);
 
-/* L1 distance of the depths of two solutions, integral of |h_a - h_b| over
- * the domain of a by 5-point Gauss quadrature in every cell of a (b is
- * evaluated at the same points; both must cover them).  For errors against
- * a fine reference solution. */
-double gf_sh1d_l1_difference(const gf_sh1d *a, const gf_sh1d *b);
-
-/* L1 error of the cell-mean depths against the exact Riemann solution at
- * time t: sum_i |h_i - mean of the exact h over cell i| dx, the exact mean
- * from 16 midpoint samples per cell. */
-double gf_sh1d_l1_error_riemann(const gf_sh1d *s, const gf_riemann *exact, double t);
-
 #ifdef __cplusplus
 }
 #endif

@@ -26,6 +26,21 @@
 extern "C" {
 #endif
 
+/* beta = epsilon K cos(zeta): the coefficient of the hydrostatic pressure
+ * beta h^2/2 of the dimensionless Savage–Hutter equations (rkdg eq. 1;
+ * kinetic paper eq. 1 with K the earth-pressure coefficient). */
+double gf_sh_beta(double epsilon, double k, double zeta);
+
+/* Net acceleration of moving material g sin(zeta) - sgn(u) r, with r >= 0 the
+ * friction deceleration tau/(rho h) of any law (rkdg eq. 2 for Coulomb);
+ * u == 0 gives the gravity part only. */
+double gf_sh_moving_accel(double g_sin_zeta, double r, double u);
+
+/* g~ for any friction law: beta dh/dx clamped to [g sin zeta - r, g sin zeta
+ * + r], r >= 0 the static bound per unit thickness (kinetic paper, g-tilde of
+ * Schemes 1-3; gf_sh_static_source is the Coulomb case). */
+double gf_sh_clamp_static(double g_sin_zeta, double r, double beta_dhdx);
+
 /* Normal (bed-normal) acceleration max(0, g cos(zeta) + c u^2): basal
  * pressure divided by density and thickness, p_b / (rho h). */
 double gf_sh_normal_acceleration(double g, double zeta, double curv, double u);

@@ -6,8 +6,6 @@
 #include <gsl/gsl_roots.h>
 #include <math.h>
 
-double gf_sh_beta(double epsilon, double k, double zeta) { return epsilon * k * cos(zeta); }
-
 /* Toro's depth function with beta in place of g. */
 /* Root of F in the bracket [lo, hi] by GSL's Brent solver, iterated until
  * gsl_root_test_interval(epsabs, epsrel) holds (at most 200 iterations).

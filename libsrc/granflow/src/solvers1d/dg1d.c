@@ -202,11 +202,10 @@ static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
     fill_ghosts(s, d, h, q);
 
     for (size_t f = 0; f <= n; ++f) { /* interface between cells f and f+1 */
-        const double cz = cos(d->zf[f]);
         double hl, ul, hr, ur;
         point_state(s, right_value(&h[f * M], M), right_value(&q[f * M], M), &hl, &ul);
         point_state(s, left_value(&h[(f + 1) * M], M), left_value(&q[(f + 1) * M], M), &hr, &ur);
-        const double bl = eps * d->k[f] * cz, br = eps * d->k[f + 1] * cz;
+        const double bl = gf_sh_beta(eps, d->k[f], d->zf[f]), br = gf_sh_beta(eps, d->k[f + 1], d->zf[f]);
         const double al = fabs(ul) + sqrt(bl * hl), ar = fabs(ur) + sqrt(br * hr);
         const double alpha = al > ar ? al : ar;
         const double eta = (d->moving[f] || d->moving[f + 1]) ? 1.0 : 0.0;
@@ -223,7 +222,7 @@ static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
             const double zeta = d->zg[c * G + g], kap = d->kg[c * G + g];
             double hp, up;
             point_state(s, poly(hc, M, d->xg[g]), poly(qc, M, d->xg[g]), &hp, &up);
-            const double beta = eps * d->k[c] * cos(zeta);
+            const double beta = gf_sh_beta(eps, d->k[c], zeta);
             const double f1 = hp * up, f2 = hp * up * up + 0.5 * beta * hp * hp;
             const double src = hp * grav * sin(zeta);
             const double tau = gf_sh1d_friction(s, hp, up, zeta, kap);
@@ -472,7 +471,7 @@ static double dg_max_dt(const gf_sh1d *s)
         const double *hc = &d->h[c * (size_t)M], *qc = &d->q[c * (size_t)M];
         if (hc[0] <= s->cfg.h_eps)
             continue;
-        const double beta = s->cfg.epsilon * d->k[c] * cos(d->zg[c * (size_t)d->ng]);
+        const double beta = gf_sh_beta(s->cfg.epsilon, d->k[c], d->zg[c * (size_t)d->ng]);
         double hp, up;
         point_state(s, right_value(hc, M), right_value(qc, M), &hp, &up);
         amax = fmax(amax, fabs(up) + sqrt(beta * hp));

@@ -161,8 +161,7 @@ static double accel(const gf_sh1d *s, double h, double u)
     const double gs = s->cfg.g * sin(s->cfg.zeta);
     if (u == 0.0 || h <= s->cfg.h_eps)
         return gs;
-    const double fr = gf_sh1d_friction(s, h, u, s->cfg.zeta, 0.0) / h;
-    return gs - (u > 0.0 ? fr : -fr);
+    return gf_sh_moving_accel(gs, gf_sh1d_friction(s, h, u, s->cfg.zeta, 0.0) / h, u);
 }
 
 /* g~ of the kinetic paper: beta dh/dx clamped to the static bounds. */
@@ -172,7 +171,7 @@ static double g_tilde(const gf_sh1d *s, const kinetic *k, size_t i)
     const double gs = s->cfg.g * sin(s->cfg.zeta);
     const double r = k->h[i] > s->cfg.h_eps ? gf_sh1d_static_friction(s, k->h[i], s->cfg.zeta) / k->h[i]
                                              : 0.0;
-    return fmin(gs + r, fmax(bdh, gs - r));
+    return gf_sh_clamp_static(gs, r, bdh);
 }
 
 static void interface_flux(const gf_sh1d *s, kinetic *k, size_t f)

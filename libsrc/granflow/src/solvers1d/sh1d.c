@@ -122,10 +122,6 @@ gf_status gf_sh1d_alloc(const gf_sh1d_type *type, const gf_sh1d_config *cfg, gf_
         free(s);
         return gf_fail(GF_ENOMEM, "gf_sh1d_alloc: out of memory");
     }
-    s->static_friction = cfg->friction;
-    double u0;
-    if (gf_friction_get(&cfg->friction, "u0", &u0) == GF_SUCCESS)
-        gf_friction_set(&s->static_friction, "u0", 0.0);
     if ((st = type->init(s))) {
         free(s->scratch);
         free(s);
@@ -274,7 +270,7 @@ void gf_sh1d_bed(const gf_sh1d *s, double x, double *zeta, double *kappa)
 
 double gf_sh1d_beta(const gf_sh1d *s, double zeta, double dudx)
 {
-    return s->cfg.epsilon * gf_earth_pressure_k(&s->cfg.earth_pressure, dudx) * cos(zeta);
+    return gf_sh_beta(s->cfg.epsilon, gf_earth_pressure_k(&s->cfg.earth_pressure, dudx), zeta);
 }
 
 double gf_sh1d_friction(const gf_sh1d *s, double h, double u, double zeta, double kappa)
@@ -295,10 +291,10 @@ double gf_sh1d_static_friction(const gf_sh1d *s, double h, double zeta)
         return 0.0;
     const double n = gf_sh_normal_acceleration(s->cfg.g, zeta, 0.0, 0.0);
     const gf_friction_state st = {h, 0.0, s->cfg.rho * h * n, s->cfg.rho, s->cfg.g};
-    gf_friction_result r;
-    if (gf_friction_eval(&s->static_friction, &st, &r) != GF_SUCCESS)
+    double tau;
+    if (gf_friction_static_bound(&s->cfg.friction, &st, &tau) != GF_SUCCESS)
         return NAN;
-    return r.tau;
+    return tau;
 }
 
 gf_status gf_gauss_legendre5(double x[5], double w[5])
@@ -310,38 +306,4 @@ gf_status gf_gauss_legendre5(double x[5], double w[5])
         gsl_integration_glfixed_point(-1.0, 1.0, i, &x[i], &w[i], t);
     gsl_integration_glfixed_table_free(t);
     return GF_SUCCESS;
-}
-
-double gf_sh1d_l1_difference(const gf_sh1d *a, const gf_sh1d *b)
-{
-    double x5[5], w5[5];
-    if (gf_gauss_legendre5(x5, w5))
-        return NAN;
-    double e = 0.0;
-    for (size_t i = 0; i < a->n; ++i)
-        for (int g = 0; g < 5; ++g) {
-            const double x = gf_sh1d_cell_centre(a, i) + 0.5 * a->dx * x5[g];
-            double ha, ua, hb, ub;
-            if (gf_sh1d_eval(a, x, &ha, &ua) || gf_sh1d_eval(b, x, &hb, &ub))
-                return NAN;
-            e += 0.5 * a->dx * w5[g] * fabs(ha - hb);
-        }
-    return e;
-}
-
-double gf_sh1d_l1_error_riemann(const gf_sh1d *s, const gf_riemann *exact, double t)
-{
-    double *h = s->scratch, e = 0.0;
-    gf_sh1d_means(s, h, h + s->n);
-    for (size_t i = 0; i < s->n; ++i) {
-        double mean = 0.0;
-        for (int k = 0; k < 16; ++k) {
-            double he, ue;
-            gf_riemann_sample(exact, gf_sh1d_cell_centre(s, i) + s->dx * ((k + 0.5) / 16.0 - 0.5), t,
-                              &he, &ue);
-            mean += he / 16.0;
-        }
-        e += fabs(h[i] - mean) * s->dx;
-    }
-    return e;
 }

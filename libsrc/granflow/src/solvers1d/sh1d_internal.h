@@ -19,7 +19,6 @@ struct gf_sh1d_type {
 struct gf_sh1d {
     const gf_sh1d_type *type;
     gf_sh1d_config cfg;
-    gf_friction static_friction; /* the law with u0 = 0: the bound at rest */
     size_t n;
     double dx, t, cfl;
     size_t steps;
