@@ -86,10 +86,10 @@ static void dressler_reservoir_still_and_tip_at_the_velocity_maximum(void **stat
     const double c0 = sqrt(G * HL);
     double h, u;
     /* both corrections vanish at xi = -1: continuous with the still reservoir */
-    gf_dressler_sample(&d, X0 - c0 * (1 - 1e-9), &h, &u);
+    assert_int_equal(gf_dressler_sample(&d, X0 - c0 * (1 - 1e-9), 1.0, &h, &u), GF_SUCCESS);
     assert_close(h, HL, 1e-8);
     assert_close(u, 0.0, 1e-8);
-    gf_dressler_sample(&d, X0 - c0 - 0.1, &h, &u);
+    assert_int_equal(gf_dressler_sample(&d, X0 - c0 - 0.1, 1.0, &h, &u), GF_SUCCESS);
     assert_close(h, HL, 0);
     assert_close(u, 0.0, 0);
     gf_dressler_outer(&d, X0 + 2 * c0 + 0.1, 1.0, &h, &u); /* beyond Ritter's front */
@@ -106,7 +106,7 @@ static void dressler_reservoir_still_and_tip_at_the_velocity_maximum(void **stat
     printf("  Dressler C = 40, t = 1: tip x = %.4f (u %.4f, h %.4f), front x = %.4f "
            "(Ritter %.4f)\n", d.x_tip, d.u_tip, d.h_tip, d.x_front, X0 + 2 * c0);
     assert_true(d.x_tip < d.x_front && d.x_front < X0 + 2 * c0);
-    gf_dressler_sample(&d, d.x_front + 1e-12, &h, &u);
+    assert_int_equal(gf_dressler_sample(&d, d.x_front + 1e-12, 1.0, &h, &u), GF_SUCCESS);
     assert_close(h, 0.0, 0);
     /* the tip profile solves its friction-dominated momentum balance
      * g h_x = -g u_tip^2/(C^2 h), i.e. (h^2)_x = -2 u_tip^2/C^2 (finite
@@ -114,8 +114,8 @@ static void dressler_reservoir_still_and_tip_at_the_velocity_maximum(void **stat
     for (int k = 1; k < 10; ++k) {
         const double x = d.x_tip + (d.x_front - d.x_tip) * k / 10.0, e = 1e-7;
         double hp, up, hm, um;
-        gf_dressler_sample(&d, x + e, &hp, &up);
-        gf_dressler_sample(&d, x - e, &hm, &um);
+        assert_int_equal(gf_dressler_sample(&d, x + e, 1.0, &hp, &up), GF_SUCCESS);
+        assert_int_equal(gf_dressler_sample(&d, x - e, 1.0, &hm, &um), GF_SUCCESS);
         const double dh2 = (hp * hp - hm * hm) / (2 * e);
         assert_close(dh2, -2.0 * d.u_tip * d.u_tip / (40.0 * 40.0), 1e-6);
         assert_true(fabs(up - um) < 1e-12 && up > 0.0 && up < 2 * c0);
@@ -137,7 +137,7 @@ static void dressler_conserves_the_released_volume(void **state)
         double v = 0.0;
         for (int i = 0; i < n; ++i) {
             double h, u;
-            gf_dressler_sample(&d, a + (b - a) * (i + 0.5) / n, &h, &u);
+            assert_int_equal(gf_dressler_sample(&d, a + (b - a) * (i + 0.5) / n, t, &h, &u), GF_SUCCESS);
             v += h * (b - a) / n;
         }
         const double L = d.x_front - d.x_tip;

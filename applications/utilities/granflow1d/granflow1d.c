@@ -619,7 +619,7 @@ int main(int argc, char **argv)
             if (exact) {
                 double he, ue;
                 if (exact == 2 && times[k] > 0.0)
-                    gf_dressler_sample(&dp, x, &he, &ue);
+                    gf_dressler_sample(&dp, x, times[k], &he, &ue); /* checked above */
                 else if (exact == 2)
                     gf_dressler_outer(&dp, x, 0.0, &he, &ue); /* the initial dam */
                 else

@@ -77,7 +77,7 @@ int main(int argc, char **argv)
         if (riemann)
             gf_riemann_sample(&rp, x, t, &h, &u);
         else
-            gf_dressler_sample(&dp, x, &h, &u);
+            gf_dressler_sample(&dp, x, t, &h, &u); /* t checked by gf_dressler_at above */
         printf("%.12g,%.12g,%.12g\n", x, h, u);
     }
     return 0;

@@ -74,7 +74,7 @@ void gf_riemann_sample(const gf_riemann *rp, double x, double t, double *h, doub
  */
 typedef struct gf_dressler {
     double g, hl, chezy, x0;
-    /* set by gf_dressler_at() for its time t: */
+    /* set by gf_dressler_at() (or a sample at a new time) for its time t: */
     double t;
     double x_tip, u_tip, h_tip; /* where the outer region ends, u and outer h there */
     double x_front;             /* wet front (h = 0) */
@@ -89,8 +89,10 @@ gf_status gf_dressler_init(gf_dressler *d, double g, double hl, double chezy, do
  * front ahead of Ritter's frictionless front x0 + 2 sqrt(g h_l) t. */
 gf_status gf_dressler_at(gf_dressler *d, double t);
 
-/* h and u at x for the time of the last gf_dressler_at(). */
-void gf_dressler_sample(const gf_dressler *d, double x, double *h, double *u);
+/* h and u at (x, t), as gf_riemann_sample: the tip and front of time t are
+ * computed (gf_dressler_at) when t differs from the last one; its errors are
+ * returned. */
+gf_status gf_dressler_sample(gf_dressler *d, double x, double t, double *h, double *u);
 
 /* Outer (first-order) expansion alone, at any (x, t > 0), for tests; the
  * still reservoir for xi <= -1, dry (h = u = 0) beyond Ritter's front. */

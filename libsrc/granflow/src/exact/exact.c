@@ -220,6 +220,7 @@ gf_status gf_dressler_init(gf_dressler *d, double g, double hl, double chezy, do
         (st = gf_check_range("Dressler dam break position x0", x0, -HUGE_VAL, HUGE_VAL)))
         return st;
     *d = (gf_dressler){.g = g, .hl = hl, .chezy = chezy, .x0 = x0};
+    d->t = NAN; /* no time yet: the first sample computes its tip */
     return GF_SUCCESS;
 }
 
@@ -357,8 +358,13 @@ gf_status gf_dressler_at(gf_dressler *d, double t)
     return GF_SUCCESS;
 }
 
-void gf_dressler_sample(const gf_dressler *d, double x, double *h, double *u)
+gf_status gf_dressler_sample(gf_dressler *d, double x, double t, double *h, double *u)
 {
+    if (!(d->t == t)) {
+        const gf_status st = gf_dressler_at(d, t);
+        if (st)
+            return st;
+    }
     if (x < d->x_tip) {
         gf_dressler_outer(d, x, d->t, h, u);
     } else if (x < d->x_front) {
@@ -368,6 +374,7 @@ void gf_dressler_sample(const gf_dressler *d, double x, double *h, double *u)
         *h = 0.0;
         *u = 0.0;
     }
+    return GF_SUCCESS;
 }
 
 /* ---- spreading parabolic cap ------------------------------------------------ */
