@@ -342,16 +342,40 @@ static size_t read_csv(const char *path, const char *const *cols, const int *non
 }
 
 /* ---- main ------------------------------------------------------------------ */
-int main(int argc, char **argv)
+/* ---- the case: everything read from the case file ------------------------ */
+typedef struct gf1d_case {
+    const char *file;
+    gf_sh1d_config c;
+    const gf_sh1d_type *method;
+    gf_topography *topo;
+    int tt;            /* topography type: 0 flat, 1 chute, 2 tabulated */
+    const char *law;
+    init_data ini;
+    double times[MAXT];
+    int nt;
+    const char *dir, *name;
+    char stem[256];
+    int plot, exact;   /* exact: 0 no, 1 riemann, 2 dressler */
+    double front_h, every;
+} gf1d_case;
+
+/* A name the library looks up (solver method, limiter): the value or die
+ * listing the valid names. */
+static const char *get_name(ini_data *d, const char *sec, const char *key, const char *def, int valid,
+                            const char *names)
 {
-    if (argc < 2 || !strcmp(argv[1], "-h") || !strcmp(argv[1], "--help")) {
-        fprintf(stderr, "usage: granflow1d CASE.ini [section.key=value ...]\n"
-                        "Runs a 1D Savage-Hutter case; the schema is documented in the source header\n"
-                        "and in README.md.\n");
-        return argc < 2 ? 2 : 0;
-    }
-    file_name = argv[1];
+    const char *v = get_str(d, sec, key, def);
+    if (!valid)
+        die("[%s] %s = '%s' is not one of: %s", sec, key, v, names);
+    return v;
+}
+
+/* Parse the case file and the command-line overrides into cs; dies naming
+ * the file, section, key and allowed range on any bad entry. */
+static void read_case(int argc, char **argv, gf1d_case *cs)
+{
     static ini_data d;
+    cs->file = file_name = argv[1];
     const int ir = ini_parse(argv[1], handler, &d);
     if (ir < 0)
         die("cannot read the case file");
@@ -366,9 +390,9 @@ int main(int argc, char **argv)
         snprintf(key, sizeof key, "%.*s", (int)(eq - dot - 1), dot + 1);
         put(&d, sec, key, eq + 1);
     }
-
     gf_sh1d_config c;
     gf_sh1d_config_init(&c);
+
     /* model */
     c.epsilon = get_num(&d, "model", "epsilon", 1.0, 1e-300, 1e300);
     c.g = get_num(&d, "model", "g", 1.0, 0.0, 1e300);
@@ -476,15 +500,17 @@ int main(int argc, char **argv)
     }
 
     /* solver */
-    static const char *const methods[] = {"rkdg", "kinetic", NULL};
-    const int method = get_choice(&d, "solver", "method", "rkdg", methods);
+    const char *mname = get_str(&d, "solver", "method", "rkdg");
+    cs->method = gf_sh1d_type_lookup(mname);
+    get_name(&d, "solver", "method", "rkdg", cs->method != NULL, gf_sh1d_type_names());
     c.degree = (int)get_int(&d, "solver", "degree", 2, 0, 2);
     c.scheme = (int)get_int(&d, "solver", "scheme", 3, 1, 3);
     c.cfl = get_num(&d, "solver", "cfl", 0.0, 0.0, 1.0);
     c.dt_fixed = get_num(&d, "solver", "dt", 0.0, 0.0, 1e300);
     static const char *const onoff[] = {"off", "on", NULL};
-    static const char *const limiters[] = {"none", "minmod", "moment", NULL};
-    c.limiter = (gf_limiter)get_choice(&d, "solver", "limiter", "moment", limiters);
+    const int lim = gf_limiter_lookup(get_str(&d, "solver", "limiter", "moment"));
+    get_name(&d, "solver", "limiter", "moment", lim >= 0, gf_limiter_names());
+    c.limiter = (gf_limiter)lim;
     c.velocity_limiter = get_choice(&d, "solver", "velocity_limiter", "on", onoff);
     c.gamma = get_num(&d, "solver", "gamma", 0.5, 1e-12, 1.0);
     /* the paper's minmod is strict (M = 0); the moment limiter spares smooth extrema */
@@ -493,7 +519,7 @@ int main(int argc, char **argv)
     c.h_semi = get_num(&d, "solver", "h_semi", 1e-6, 1e-300, 1.0);
 
     /* output */
-    double times[MAXT];
+    double *times = cs->times;
     int nt = 0;
     {
         char buf[512];
@@ -509,54 +535,107 @@ int main(int argc, char **argv)
         if (!nt)
             die("[output] times: give at least one output time");
     }
-    const char *dir = get_str(&d, "output", "dir", ".");
-    char stem[256];
+    cs->nt = nt;
+    cs->dir = get_str(&d, "output", "dir", ".");
+    char *stem = cs->stem;
     {
         const char *b = strrchr(argv[1], '/');
-        snprintf(stem, sizeof stem, "%s", b ? b + 1 : argv[1]);
+        snprintf(stem, sizeof cs->stem, "%s", b ? b + 1 : argv[1]);
         char *dotp = strrchr(stem, '.');
         if (dotp)
             *dotp = 0;
     }
-    const char *name = get_str(&d, "output", "name", stem);
-    const int plot = get_choice(&d, "output", "plot", "no", (const char *const[]){"no", "yes", NULL});
-    const int exact = get_choice(&d, "output", "exact", "no", (const char *const[]){"no", "riemann", "dressler", NULL});
-    const double front_h = get_num(&d, "output", "front_h", 1e-3, 0.0, 1e300);
-    const double every = get_num(&d, "output", "every", 0.0, 0.0, 1e300);
+    cs->name = get_str(&d, "output", "name", stem);
+    cs->plot = get_choice(&d, "output", "plot", "no", (const char *const[]){"no", "yes", NULL});
+    cs->exact = get_choice(&d, "output", "exact", "no", (const char *const[]){"no", "riemann", "dressler", NULL});
+    cs->front_h = get_num(&d, "output", "front_h", 1e-3, 0.0, 1e300);
+    cs->every = get_num(&d, "output", "every", 0.0, 0.0, 1e300);
 
     for (int i = 0; i < d.n; ++i)
         if (!d.e[i].used)
             die("unknown key [%s] %s (see the schema in README.md)", d.e[i].section, d.e[i].key);
+    cs->c = c;
+    cs->topo = topo;
+    cs->tt = tt;
+    cs->law = law;
+    cs->ini = ini;
+}
 
-    gf_riemann rp;
-    gf_dressler dp;
+
+/* The exact solution asked for by [output] exact, checked before the run. */
+static void setup_exact(const gf1d_case *cs, gf_riemann *rp, gf_dressler *dp)
+{
     double chezy = 0.0;
-    if (exact == 2) {
-        if (ini.shape != DAM || tt != 0 || c.zeta != 0.0 || strcmp(law, "chezy") || ini.hr != 0.0 ||
-            ini.ul != 0.0 || c.earth_pressure.k_act != 1.0 || c.earth_pressure.k_pass != 1.0 ||
-            c.epsilon != c.g)
+    if (cs->exact == 2) {
+        if (cs->ini.shape != DAM || cs->tt != 0 || cs->c.zeta != 0.0 || strcmp(cs->law, "chezy") || cs->ini.hr != 0.0 ||
+            cs->ini.ul != 0.0 || cs->c.earth_pressure.k_act != 1.0 || cs->c.earth_pressure.k_pass != 1.0 ||
+            cs->c.epsilon != cs->c.g)
             die("[output] exact = dressler needs shape = dam with h_right = 0 and u_left = 0 on "
                 "flat ground, friction = chezy, isotropic earth pressure and epsilon = g");
-        lib_check(gf_friction_get(&c.friction, "C", &chezy), "[friction] C");
-        lib_check(gf_dressler_init(&dp, c.g, ini.hl, chezy, ini.x0), "exact solution");
-        for (int k = 0; k < nt; ++k) /* fail before the run, not after */
-            if (times[k] > 0.0 && gf_dressler_at(&dp, times[k]))
-                die("[output] exact = dressler at t = %g: %s", times[k], gf_error_detail());
-    } else if (exact) {
-        if (ini.shape != DAM || tt != 0 || c.zeta != 0.0 || strcmp(law, "none"))
+        lib_check(gf_friction_get(&cs->c.friction, "C", &chezy), "[friction] C");
+        lib_check(gf_dressler_init(dp, cs->c.g, cs->ini.hl, chezy, cs->ini.x0), "exact solution");
+        for (int k = 0; k < cs->nt; ++k) /* fail before the run, not after */
+            if (cs->times[k] > 0.0 && gf_dressler_at(dp, cs->times[k]))
+                die("[output] exact = dressler at t = %g: %s", cs->times[k], gf_error_detail());
+    } else if (cs->exact) {
+        if (cs->ini.shape != DAM || cs->tt != 0 || cs->c.zeta != 0.0 || strcmp(cs->law, "none"))
             die("[output] exact = riemann needs shape = dam on flat ground without friction");
-        const double beta = c.epsilon * c.earth_pressure.k_act; /* K constant: isotropic or phi = delta */
-        if (c.earth_pressure.k_act != c.earth_pressure.k_pass)
+        const double beta = cs->c.epsilon * cs->c.earth_pressure.k_act; /* K constant: isotropic or phi = delta */
+        if (cs->c.earth_pressure.k_act != cs->c.earth_pressure.k_pass)
             die("[output] exact = riemann needs K_act = K_pass (isotropic, or phi = delta)");
-        lib_check(gf_riemann_solve(&rp, beta, ini.hl, ini.ul, ini.hr, ini.ur, ini.x0), "exact solution");
+        lib_check(gf_riemann_solve(rp, beta, cs->ini.hl, cs->ini.ul, cs->ini.hr, cs->ini.ur, cs->ini.x0), "exact solution");
     }
 
-    gf_sh1d *s;
-    if (gf_sh1d_alloc(method ? gf_sh1d_kinetic : gf_sh1d_rkdg, &c, &s))
-        die("[solver]/[domain]: %s", gf_error_detail());
-    if (gf_sh1d_set_initial(s, initial, &ini))
-        die("[initial]: %s", gf_error_detail());
+}
 
+/* NAME_t<time>.csv of output time k: x,h,u[,X,Z,Xs,Zs][,h_exact,u_exact]. */
+static void write_profile(const gf1d_case *cs, const gf_sh1d *s, int k, const double *h, const double *u,
+                          const gf_riemann *rp, gf_dressler *dp)
+{
+    char path[1024];
+    const size_t n = gf_sh1d_n_cells(s);
+    const char *dir = cs->dir, *name = cs->name;
+    const double *times = cs->times;
+    const int exact = cs->exact;
+    gf_topography *topo = cs->topo;
+    mkpath(path, sizeof path, "%s/%s_t%g.csv", dir, name, times[k]);
+        FILE *f = fopen(path, "w");
+        if (!f)
+            die("cannot write '%s': %s", path, strerror(errno));
+        if (exact == 2 && times[k] > 0.0 && gf_dressler_at(dp, times[k]))
+            die("[output] exact = dressler at t = %g: %s", times[k], gf_error_detail());
+        fprintf(f, "x,h,u%s%s\n", topo ? ",X,Z,Xs,Zs" : "", exact ? ",h_exact,u_exact" : "");
+        for (size_t i = 0; i < n; ++i) {
+            const double x = gf_sh1d_cell_centre(s, i);
+            fprintf(f, "%.10g,%.12g,%.12g", x, h[i], u[i]);
+            if (topo) {
+                double X, Z, z, kap;
+                gf_topography_position(topo, x, &X, &Z);
+                gf_topography_eval(topo, x, &z, &kap);
+                fprintf(f, ",%.10g,%.10g,%.10g,%.10g", X, Z, X + h[i] * sin(z), Z + h[i] * cos(z));
+            }
+            if (exact) {
+                double he, ue;
+                if (exact == 2 && times[k] > 0.0)
+                    gf_dressler_sample(dp, x, times[k], &he, &ue); /* checked above */
+                else if (exact == 2)
+                    gf_dressler_outer(dp, x, 0.0, &he, &ue); /* the initial dam */
+                else
+                    gf_riemann_sample(rp, x, times[k], &he, &ue);
+                fprintf(f, ",%.12g,%.12g", he, ue);
+            }
+            fprintf(f, "\n");
+        }
+        fclose(f);
+}
+
+/* Run to every output time: a summary line (stdout and NAME.summary) and
+ * a profile per time. */
+static void run_case(const gf1d_case *cs, gf_sh1d *s, const gf_riemann *rp, gf_dressler *dp)
+{
+    const char *dir = cs->dir, *name = cs->name;
+    const double *times = cs->times, front_h = cs->front_h, every = cs->every;
+    const int nt = cs->nt;
     char path[1024];
     mkpath(path, sizeof path, "%s/%s.summary", dir, name);
     FILE *sum = fopen(path, "w");
@@ -565,7 +644,7 @@ int main(int argc, char **argv)
     const double m0 = gf_sh1d_mass(s);
     const size_t n = gf_sh1d_n_cells(s);
     double *h = malloc(n * sizeof *h), *u = malloc(n * sizeof *u);
-    fprintf(sum, "# granflow1d %s: %s, %zu cells\n", argv[1], method ? "kinetic" : "rkdg", n);
+    fprintf(sum, "# granflow1d %s: %s, %zu cells\n", cs->file, gf_sh1d_type_name(cs->method), n);
     fprintf(sum, "time,mass,mass_rel_change,max_h,front,tail,max_speed,steps,cpu_s\n");
     printf("%-10s %-12s %-10s %-10s %-10s %-10s %-8s %s\n", "time", "mass", "max_h", "front", "tail",
            "max|u|", "steps", "cpu_s");
@@ -600,39 +679,22 @@ int main(int argc, char **argv)
         printf("%-10g %-12.8g %-10.5g %-10.5g %-10.5g %-10.3g %-8zu %.3f\n", times[k], mass, hmax,
                front, tail, gf_sh1d_max_speed(s), gf_sh1d_steps(s), cpu);
 
-        mkpath(path, sizeof path, "%s/%s_t%g.csv", dir, name, times[k]);
-        FILE *f = fopen(path, "w");
-        if (!f)
-            die("cannot write '%s': %s", path, strerror(errno));
-        if (exact == 2 && times[k] > 0.0 && gf_dressler_at(&dp, times[k]))
-            die("[output] exact = dressler at t = %g: %s", times[k], gf_error_detail());
-        fprintf(f, "x,h,u%s%s\n", topo ? ",X,Z,Xs,Zs" : "", exact ? ",h_exact,u_exact" : "");
-        for (size_t i = 0; i < n; ++i) {
-            const double x = gf_sh1d_cell_centre(s, i);
-            fprintf(f, "%.10g,%.12g,%.12g", x, h[i], u[i]);
-            if (topo) {
-                double X, Z, z, kap;
-                gf_topography_position(topo, x, &X, &Z);
-                gf_topography_eval(topo, x, &z, &kap);
-                fprintf(f, ",%.10g,%.10g,%.10g,%.10g", X, Z, X + h[i] * sin(z), Z + h[i] * cos(z));
-            }
-            if (exact) {
-                double he, ue;
-                if (exact == 2 && times[k] > 0.0)
-                    gf_dressler_sample(&dp, x, times[k], &he, &ue); /* checked above */
-                else if (exact == 2)
-                    gf_dressler_outer(&dp, x, 0.0, &he, &ue); /* the initial dam */
-                else
-                    gf_riemann_sample(&rp, x, times[k], &he, &ue);
-                fprintf(f, ",%.12g,%.12g", he, ue);
-            }
-            fprintf(f, "\n");
-        }
-        fclose(f);
+        write_profile(cs, s, k, h, u, rp, dp);
     }
     fclose(sum);
 
-    if (plot) {
+    free(h);
+    free(u);
+}
+
+/* NAME.gp and NAME.png: h and u at every output time (and the bed). */
+static void write_plot(const gf1d_case *cs)
+{
+    const char *dir = cs->dir, *name = cs->name;
+    const double *times = cs->times;
+    const int nt = cs->nt, exact = cs->exact;
+    const gf_topography *topo = cs->topo;
+    char path[1024];
         mkpath(path, sizeof path, "%s/%s.gp", dir, name);
         FILE *g = fopen(path, "w");
         if (!g)
@@ -666,13 +728,33 @@ int main(int argc, char **argv)
         mkpath(cmd, sizeof cmd, "gnuplot '%s/%s.gp'", dir, name);
         if (system(cmd) != 0)
             fprintf(stderr, "granflow1d: warning: gnuplot failed on %s/%s.gp\n", dir, name);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2 || !strcmp(argv[1], "-h") || !strcmp(argv[1], "--help")) {
+        fprintf(stderr, "usage: granflow1d CASE.ini [section.key=value ...]\n"
+                        "Runs a 1D Savage-Hutter case; the schema is documented in the source header\n"
+                        "and in README.md.\n");
+        return argc < 2 ? 2 : 0;
     }
-    free(h);
-    free(u);
-    free(ini.fx);
-    free(ini.fh);
-    free(ini.fu);
+    static gf1d_case cs;
+    read_case(argc, argv, &cs);
+    gf_riemann rp;
+    gf_dressler dp;
+    setup_exact(&cs, &rp, &dp);
+    gf_sh1d *s;
+    if (gf_sh1d_alloc(cs.method, &cs.c, &s))
+        die("[solver]/[domain]: %s", gf_error_detail());
+    if (gf_sh1d_set_initial(s, initial, &cs.ini))
+        die("[initial]: %s", gf_error_detail());
+    run_case(&cs, s, &rp, &dp);
+    if (cs.plot)
+        write_plot(&cs);
+    free(cs.ini.fx);
+    free(cs.ini.fh);
+    free(cs.ini.fu);
     gf_sh1d_free(s);
-    gf_topography_free(topo);
+    gf_topography_free(cs.topo);
     return 0;
 }

@@ -58,6 +58,9 @@ typedef enum gf_limiter {
 /* "none", "minmod", "moment"; -1 for any other name. */
 int gf_limiter_lookup(const char *name);
 
+/* "none, minmod, moment" — for error messages. */
+const char *gf_limiter_names(void);
+
 typedef struct gf_sh1d_config {
     size_t n_cells;          /* number of cells N, >= 4 */
     double x_min, x_max;     /* domain */
@@ -103,6 +106,9 @@ extern const gf_sh1d_type *const gf_sh1d_kinetic;
 
 /* "rkdg" or "kinetic"; NULL otherwise. */
 const gf_sh1d_type *gf_sh1d_type_lookup(const char *name);
+
+/* "rkdg, kinetic" — for error messages. */
+const char *gf_sh1d_type_names(void);
 const char *gf_sh1d_type_name(const gf_sh1d_type *type);
 
 /* Initial data: depth and velocity at x. */

@@ -47,6 +47,10 @@ const gf_sh1d_type *gf_sh1d_type_lookup(const char *name)
     return NULL;
 }
 
+const char *gf_sh1d_type_names(void) { return "rkdg, kinetic"; }
+
+const char *gf_limiter_names(void) { return "none, minmod, moment"; }
+
 int gf_limiter_lookup(const char *name)
 {
     static const char *const names[] = {"none", "minmod", "moment"};
