@@ -3,6 +3,7 @@
  *
  *   granflowExact riemann BETA H_L U_L H_R U_R X0 T  < positions
  *   granflowExact dressler G H_L C X0 T                < positions
+ *   granflowExact chute ZETA0 ZETA1 X1 X2              < arc lengths
  *
  * Reads one x per line (or the first column of a CSV with a header) on
  * standard input and prints "x,h_exact,u_exact".  BETA = g for the
@@ -10,13 +11,18 @@
  * zeta for the dimensionless Savage–Hutter Riemann problem.  dressler:
  * Dressler's dry dam break with Chezy coefficient C (first-order expansion
  * with a friction-dominated tip, exact.h); its tip and front positions are
- * printed to standard error.
+ * printed to standard error.  chute: libgranflow's chute topography
+ * (topography.h: zeta0 up to x1, linear to zeta1 at x2, angles in degrees;
+ * the finite-area paper's eq. 74 is 35 10 17.5 21.5): prints
+ * "s,X,Z,zeta" - the bed position with X = Z = 0 at s = 0 and the
+ * inclination in radians - for the mesh generators of the tutorials.
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "granflow/exact.h"
+#include "granflow/topography.h"
 
 static double num(const char *s, const char *what)
 {
@@ -32,12 +38,46 @@ static double num(const char *s, const char *what)
 static void usage(void)
 {
     fprintf(stderr, "usage: granflowExact riemann BETA H_L U_L H_R U_R X0 T < positions\n"
-                    "       granflowExact dressler G H_L C X0 T < positions\n");
+                    "       granflowExact dressler G H_L C X0 T < positions\n"
+                    "       granflowExact chute ZETA0 ZETA1 X1 X2 < arc lengths\n");
     exit(2);
+}
+
+/* the chute's bed at every arc length read from stdin */
+static int chute(char **argv)
+{
+    const double deg = 3.14159265358979323846 / 180.0;
+    gf_topography *t;
+    if (gf_topography_chute_alloc(num(argv[2], "ZETA0") * deg, num(argv[3], "ZETA1") * deg, num(argv[4], "X1"),
+                                  num(argv[5], "X2"), &t) != GF_SUCCESS) {
+        fprintf(stderr, "granflowExact: %s\n", gf_error_detail());
+        return 2;
+    }
+    double X0, Z0;
+    gf_topography_position(t, 0.0, &X0, &Z0);
+    char line[4096];
+    printf("s,X,Z,zeta\n");
+    while (fgets(line, sizeof line, stdin)) {
+        char *end;
+        const double x = strtod(line, &end);
+        if (end == line)
+            continue; /* header or blank */
+        double X, Z, zeta, kappa;
+        if (gf_topography_position(t, x, &X, &Z) != GF_SUCCESS || gf_topography_eval(t, x, &zeta, &kappa) != GF_SUCCESS) {
+            fprintf(stderr, "granflowExact: %s\n", gf_error_detail());
+            gf_topography_free(t);
+            return 2;
+        }
+        printf("%.12g,%.12g,%.12g,%.15g\n", x, X - X0, Z - Z0, zeta);
+    }
+    gf_topography_free(t);
+    return 0;
 }
 
 int main(int argc, char **argv)
 {
+    if (argc == 6 && strcmp(argv[1], "chute") == 0)
+        return chute(argv);
     static const char *rnames[] = {"BETA", "H_L", "U_L", "H_R", "U_R", "X0", "T"};
     static const char *dnames[] = {"G", "H_L", "C", "X0", "T"};
     const int riemann = argc == 9 && strcmp(argv[1], "riemann") == 0;
