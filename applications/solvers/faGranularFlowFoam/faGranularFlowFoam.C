@@ -41,6 +41,7 @@ Usage
 #include "fixFacesAtRest.H"
 #include "granularBoundaries.H"
 #include "explicitSurfaceScheme.H"
+#include "cpuSections.H"
 
 #include "keepFreedMemory.H"
 #include "clipRoundOff.H"
