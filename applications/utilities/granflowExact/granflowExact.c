@@ -4,6 +4,7 @@
  *   granflowExact riemann BETA H_L U_L H_R U_R X0 T  < positions
  *   granflowExact dressler G H_L C X0 T                < positions
  *   granflowExact chute ZETA0 ZETA1 X1 X2              < arc lengths
+ *   granflowExact table PROFILE.csv                     < arc lengths
  *
  * Reads one x per line (or the first column of a CSV with a header) on
  * standard input and prints "x,h_exact,u_exact".  BETA = g for the
@@ -16,6 +17,8 @@
  * the finite-area paper's eq. 74 is 35 10 17.5 21.5): prints
  * "s,X,Z,zeta" - the bed position with X = Z = 0 at s = 0 and the
  * inclination in radians - for the mesh generators of the tutorials.
+ * table: the same for a tabulated profile (CSV with a header line, columns
+ * x and zeta in degrees, x strictly increasing; libgranflow's cubic spline).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,22 +42,79 @@ static void usage(void)
 {
     fprintf(stderr, "usage: granflowExact riemann BETA H_L U_L H_R U_R X0 T < positions\n"
                     "       granflowExact dressler G H_L C X0 T < positions\n"
-                    "       granflowExact chute ZETA0 ZETA1 X1 X2 < arc lengths\n");
+                    "       granflowExact chute ZETA0 ZETA1 X1 X2 < arc lengths\n"
+                    "       granflowExact table PROFILE.csv < arc lengths\n");
     exit(2);
 }
 
-/* the chute's bed at every arc length read from stdin */
+/* A tabulated profile (x, zeta in degrees) from a CSV file; exits with a
+ * message naming the file and line on bad input. */
+static gf_topography *read_table(const char *path)
+{
+    const double deg = 3.14159265358979323846 / 180.0;
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "granflowExact: cannot read profile '%s'\n", path);
+        exit(2);
+    }
+    double *x = NULL, *z = NULL;
+    size_t n = 0, cap = 0, lineno = 0;
+    char line[4096];
+    while (fgets(line, sizeof line, f)) {
+        ++lineno;
+        if (lineno == 1)
+            continue; /* header */
+        char *end, *end2;
+        const double a = strtod(line, &end);
+        if (end == line || *end != ',') {
+            fprintf(stderr, "granflowExact: '%s' line %zu: expected x,zeta\n", path, lineno);
+            exit(2);
+        }
+        const double b = strtod(end + 1, &end2);
+        if (end2 == end + 1) {
+            fprintf(stderr, "granflowExact: '%s' line %zu: zeta is not a number\n", path, lineno);
+            exit(2);
+        }
+        if (n == cap) {
+            cap = cap ? 2 * cap : 256;
+            x = realloc(x, cap * sizeof *x);
+            z = realloc(z, cap * sizeof *z);
+            if (!x || !z) {
+                fprintf(stderr, "granflowExact: out of memory\n");
+                exit(2);
+            }
+        }
+        x[n] = a, z[n] = b * deg, ++n;
+    }
+    fclose(f);
+    gf_topography *t;
+    if (gf_topography_tabulated_alloc(x, z, n, &t) != GF_SUCCESS) {
+        fprintf(stderr, "granflowExact: profile '%s': %s\n", path, gf_error_detail());
+        exit(2);
+    }
+    free(x);
+    free(z);
+    return t;
+}
+
+/* the bed of a chute (argv: chute ZETA0 ZETA1 X1 X2) or of a tabulated
+ * profile (argv: table FILE) at every arc length read from stdin */
 static int chute(char **argv)
 {
     const double deg = 3.14159265358979323846 / 180.0;
     gf_topography *t;
-    if (gf_topography_chute_alloc(num(argv[2], "ZETA0") * deg, num(argv[3], "ZETA1") * deg, num(argv[4], "X1"),
-                                  num(argv[5], "X2"), &t) != GF_SUCCESS) {
+    if (strcmp(argv[1], "table") == 0)
+        t = read_table(argv[2]);
+    else if (gf_topography_chute_alloc(num(argv[2], "ZETA0") * deg, num(argv[3], "ZETA1") * deg, num(argv[4], "X1"),
+                                       num(argv[5], "X2"), &t) != GF_SUCCESS) {
         fprintf(stderr, "granflowExact: %s\n", gf_error_detail());
         return 2;
     }
+    double lo, hi;
+    gf_topography_range(t, &lo, &hi);
+    (void)hi;
     double X0, Z0;
-    gf_topography_position(t, 0.0, &X0, &Z0);
+    gf_topography_position(t, lo > 0.0 ? lo : 0.0, &X0, &Z0);
     char line[4096];
     printf("s,X,Z,zeta\n");
     while (fgets(line, sizeof line, stdin)) {
@@ -76,7 +136,7 @@ static int chute(char **argv)
 
 int main(int argc, char **argv)
 {
-    if (argc == 6 && strcmp(argv[1], "chute") == 0)
+    if ((argc == 6 && strcmp(argv[1], "chute") == 0) || (argc == 3 && strcmp(argv[1], "table") == 0))
         return chute(argv);
     static const char *rnames[] = {"BETA", "H_L", "U_L", "H_R", "U_R", "X0", "T"};
     static const char *dnames[] = {"G", "H_L", "C", "X0", "T"};
