@@ -47,6 +47,7 @@
 
 #include <ini.h>
 
+#include "gf_csv.h"
 #include "granflow/granflow.h"
 #include "granflow/sh1d.h"
 
@@ -126,7 +127,6 @@ static const char *get_str(ini_data *d, const char *sec, const char *key, const 
     return e ? e->value : def;
 }
 
-static int parse_number(const char *t, double *v);
 
 static double get_num(ini_data *d, const char *sec, const char *key, double def, double lo, double hi)
 {
@@ -134,7 +134,7 @@ static double get_num(ini_data *d, const char *sec, const char *key, double def,
     if (!e)
         return def;
     double v;
-    if (!parse_number(e->value, &v))
+    if (!gf_parse_number(e->value, &v))
         die("[%s] %s = '%s' is not a number", sec, key, e->value);
     if (v < lo || v > hi)
         die("[%s] %s = %g is outside the allowed range [%g, %g]", sec, key, v, lo, hi);
@@ -148,7 +148,7 @@ static long get_int(ini_data *d, const char *sec, const char *key, long def, lon
     if (!e)
         return def;
     double v;
-    if (!parse_number(e->value, &v) || v != floor(v))
+    if (!gf_parse_number(e->value, &v) || v != floor(v))
         die("[%s] %s = '%s' is not an integer", sec, key, e->value);
     if (v < (double)lo || v > (double)hi)
         die("[%s] %s = %g is outside the allowed range [%ld, %ld]", sec, key, v, lo, hi);
@@ -238,106 +238,14 @@ static void initial(double x, void *ctx, double *h, double *u)
     }
 }
 
-/* A whole token as a finite number: surrounding blanks allowed, nothing else
- * ("0.5inf", "1e", "2,5" are not numbers). */
-static int parse_number(const char *t, double *v)
-{
-    char *end;
-    while (isspace((unsigned char)*t))
-        ++t;
-    errno = 0;
-    *v = strtod(t, &end);
-    if (end == t)
-        return 0;
-    while (*end && isspace((unsigned char)*end))
-        ++end;
-    return !*end && !errno && isfinite(*v);
-}
-
-/* A CSV table with a header naming the columns: every row has one finite
- * number per header column, the first requested column (x) is strictly
- * increasing, and columns listed in nonneg (1 = must be >= 0) are >= 0.
- * Errors name the file and line.  Returns the number of rows. */
+/* read_csv: the shared strict parser (../common/gf_csv.h), dying with its message */
 static size_t read_csv(const char *path, const char *const *cols, const int *nonneg, int ncols,
                        double **out)
 {
-    FILE *f = fopen(path, "r");
-    if (!f)
-        die("cannot open '%s': %s", path, strerror(errno));
-    char line[4096], head[4096];
-    size_t lineno = 0;
-    do {
-        if (!fgets(head, sizeof head, f))
-            die("'%s' has no header line", path);
-        ++lineno;
-    } while (head[0] == '#');
-    int idx[8], nhead = 0;
-    char *names[64];
-    for (char *t = strtok(head, ",\r\n"); t; t = strtok(NULL, ",\r\n")) {
-        while (isspace((unsigned char)*t))
-            ++t;
-        if (nhead == 64)
-            die("'%s' line %zu: more than 64 columns", path, lineno);
-        names[nhead++] = t;
-    }
-    for (int c = 0; c < ncols; ++c) {
-        idx[c] = -1;
-        for (int k = 0; k < nhead; ++k)
-            if (!strcmp(names[k], cols[c]))
-                idx[c] = k;
-        if (idx[c] < 0)
-            die("'%s' has no column '%s' in its header (line %zu)", path, cols[c], lineno);
-    }
-    size_t n = 0, cap = 256;
-    for (int c = 0; c < ncols; ++c)
-        if (!(out[c] = malloc(cap * sizeof **out)))
-            die("out of memory reading '%s'", path);
-    while (fgets(line, sizeof line, f)) {
-        ++lineno;
-        if (!strchr(line, '\n') && !feof(f))
-            die("'%s' line %zu: longer than %zu characters", path, lineno, sizeof line - 2);
-        if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
-            continue;
-        double v[64];
-        int k = 0;
-        /* split on every comma, so that an empty field is an error, not skipped */
-        for (char *t = line, *c; ; t = c + 1) {
-            c = strchr(t, ',');
-            if (c)
-                *c = 0;
-            else
-                t[strcspn(t, "\r\n")] = 0;
-            if (k == 64 || k == nhead)
-                die("'%s' line %zu: more values than the %d columns of the header", path, lineno,
-                    nhead);
-            if (!parse_number(t, &v[k]))
-                die("'%s' line %zu, column %d (%s): '%s' is not a finite number", path, lineno,
-                    k + 1, names[k], t);
-            ++k;
-            if (!c)
-                break;
-        }
-        if (k != nhead)
-            die("'%s' line %zu: %d values, the header has %d columns", path, lineno, k, nhead);
-        for (int c = 0; c < ncols; ++c)
-            if (nonneg[c] && v[idx[c]] < 0.0)
-                die("'%s' line %zu: %s = %g is negative (must be >= 0)", path, lineno, cols[c],
-                    v[idx[c]]);
-        if (n > 0 && !(v[idx[0]] > out[0][n - 1]))
-            die("'%s' line %zu: %s = %g does not increase (previous row %g); rows must be "
-                "sorted by strictly increasing %s", path, lineno, cols[0], v[idx[0]], out[0][n - 1],
-                cols[0]);
-        if (n == cap) {
-            cap *= 2;
-            for (int c = 0; c < ncols; ++c)
-                if (!(out[c] = realloc(out[c], cap * sizeof **out)))
-                    die("out of memory reading '%s'", path);
-        }
-        for (int c = 0; c < ncols; ++c)
-            out[c][n] = v[idx[c]];
-        ++n;
-    }
-    fclose(f);
+    char err[1024];
+    size_t n;
+    if (gf_csv_read(path, cols, nonneg, ncols, out, &n, err, sizeof err))
+        die("%s", err);
     return n;
 }
 
@@ -527,7 +435,7 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
         for (char *t = strtok(buf, " ,\t"); t; t = strtok(NULL, " ,\t")) {
             if (nt == MAXT)
                 die("[output] times: more than %d times", MAXT);
-            if (!parse_number(t, &times[nt]) || !(times[nt] >= 0) ||
+            if (!gf_parse_number(t, &times[nt]) || !(times[nt] >= 0) ||
                 (nt && times[nt] <= times[nt - 1]))
                 die("[output] times: '%s' is not a time after the previous one", t);
             ++nt;

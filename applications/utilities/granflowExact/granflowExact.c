@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gf_csv.h"
 #include "granflow/exact.h"
 #include "granflow/topography.h"
 
@@ -47,53 +48,29 @@ static void usage(void)
     exit(2);
 }
 
-/* A tabulated profile (x, zeta in degrees) from a CSV file; exits with a
- * message naming the file and line on bad input. */
+/* A tabulated profile (CSV columns x, zeta in degrees; the shared strict
+ * parser gf_csv.h); exits with its message on bad input. */
 static gf_topography *read_table(const char *path)
 {
     const double deg = 3.14159265358979323846 / 180.0;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "granflowExact: cannot read profile '%s'\n", path);
+    static const char *const cols[] = {"x", "zeta"};
+    static const int nonneg[] = {0, 0};
+    double *col[2];
+    size_t n;
+    char err[1024];
+    if (gf_csv_read(path, cols, nonneg, 2, col, &n, err, sizeof err)) {
+        fprintf(stderr, "granflowExact: %s\n", err);
         exit(2);
     }
-    double *x = NULL, *z = NULL;
-    size_t n = 0, cap = 0, lineno = 0;
-    char line[4096];
-    while (fgets(line, sizeof line, f)) {
-        ++lineno;
-        if (lineno == 1)
-            continue; /* header */
-        char *end, *end2;
-        const double a = strtod(line, &end);
-        if (end == line || *end != ',') {
-            fprintf(stderr, "granflowExact: '%s' line %zu: expected x,zeta\n", path, lineno);
-            exit(2);
-        }
-        const double b = strtod(end + 1, &end2);
-        if (end2 == end + 1) {
-            fprintf(stderr, "granflowExact: '%s' line %zu: zeta is not a number\n", path, lineno);
-            exit(2);
-        }
-        if (n == cap) {
-            cap = cap ? 2 * cap : 256;
-            x = realloc(x, cap * sizeof *x);
-            z = realloc(z, cap * sizeof *z);
-            if (!x || !z) {
-                fprintf(stderr, "granflowExact: out of memory\n");
-                exit(2);
-            }
-        }
-        x[n] = a, z[n] = b * deg, ++n;
-    }
-    fclose(f);
+    for (size_t i = 0; i < n; ++i)
+        col[1][i] *= deg;
     gf_topography *t;
-    if (gf_topography_tabulated_alloc(x, z, n, &t) != GF_SUCCESS) {
+    if (gf_topography_tabulated_alloc(col[0], col[1], n, &t) != GF_SUCCESS) {
         fprintf(stderr, "granflowExact: profile '%s': %s\n", path, gf_error_detail());
         exit(2);
     }
-    free(x);
-    free(z);
+    free(col[0]);
+    free(col[1]);
     return t;
 }
 
