@@ -23,8 +23,15 @@
  *     for mass h u_nu, normal momentum h u_nu^2 + h p_b/(2 rho) (eq. 35's
  *     lateral pressure with p_b = rho a h) and tangential momentum
  *     h u_nu u_t.  An edge between two faces at rest (m = 0 on both) carries
- *     no mass and the mean pressure, so a pile that friction holds stays at
- *     rest exactly.  Boundary edges: wall (mirror state, zero mass flux),
+ *     no mass, and each side feels the pressure a_f h_f h_N / 2, whose sum
+ *     over a face is A a_f h_f grad h (Green–Gauss): a pile that friction
+ *     holds stays at rest exactly (kinetic paper, Def. 1, in 2D).  An edge
+ *     between two wet faces that are both slow (|u| < dt |g|) carries only
+ *     the donor flux of its mean normal velocity with the same pressures (the
+ *     kinetic paper's Scheme 3 idea), so deposits do not creep through HLL's
+ *     mass diffusion.  On a wet/dry edge the face values are used (no
+ *     reconstruction), so the limiter cannot cut a front's tip to zero.
+ *     Boundary edges: wall (mirror state, zero mass flux),
  *     outflow (one-way: the interior state leaves, nothing enters), inflow
  *     (prescribed h and u: the flux of that state);
  *  3. face update: m* = m + dt (-div F + h g), projected onto the face's
@@ -44,8 +51,10 @@
  * the other, so the volume changes only through boundary edges, whose
  * fluxes are accumulated per edge (gf_surface_edge_volume).
  *
- * Active set: faces wetter than h_dry and two rings of neighbours; only
- * those faces and their edges are computed, so dry terrain costs a scan.
+ * Active set: faces with h > 0, the owners of inflow edges that bring
+ * material, and two rings of neighbours (the first ring exchanged between
+ * ranks); only those faces and their edges are computed, so dry terrain
+ * costs a scan.
  *
  * Parallel: faces n_faces .. n_faces+n_ghosts-1 are halo copies of other
  * ranks' faces (one per processor edge); the caller's exchange callback
