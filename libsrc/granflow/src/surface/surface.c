@@ -524,12 +524,12 @@ static void gradients(gf_surface *s, const double *H)
     }
 }
 
-/* Side state at edge e of face f: h, velocity (3D), reconstructed when
- * `rec` (owned active faces and ghosts carry gradients). */
-static inline void side_state(const gf_surface *s, const double *H, const double *M, int f, int e, int rec,
-                              double *h, double *u)
+/* Side state at edge e of face f: h and velocity (3D) of the stage, linearly
+ * reconstructed when rec == 1 (owned active faces and ghosts carry
+ * gradients), the face values when rec == 0 or 2 (2: towards a dry face). */
+static inline void side_state(const gf_surface *s, const double *H, int f, int e, int rec, double *h,
+                              double *u)
 {
-    (void)M;
     *h = H[f];
     memcpy(u, s->u + 3 * f, 3 * sizeof *u);
     if (!rec)
@@ -659,15 +659,14 @@ static void edge_flux(gf_surface *s, const double *H, const double *M, int e, in
             }
         }
         double hr, ur[3];
-        const int rec = order2 && !s->first[e], hd = s->c.h_dry;
+        const int rec = order2 && !s->first[e];
         const int dry_o = H[o] <= s->c.h_dry, dry_n = H[n] <= s->c.h_dry;
-        side_state(s, H, M, o, e, rec ? (dry_n ? 2 : 1) : 0, &hl, ul);
-        side_state(s, H, M, n, e, rec && ((size_t)n >= m->n_faces || s->mark_f[n] == st) ? (dry_o ? 2 : 1) : 0,
+        side_state(s, H, o, e, rec ? (dry_n ? 2 : 1) : 0, &hl, ul);
+        side_state(s, H, n, e, rec && ((size_t)n >= m->n_faces || s->mark_f[n] == st) ? (dry_o ? 2 : 1) : 0,
                    &hr, ur);
-        (void)hd;
         hll(hl, dot3(ul, nul), dot3(ul, t), s->a[o], hr, dot3(ur, nur), dot3(ur, t), s->a[n], F, &fpress);
     } else {
-        side_state(s, H, M, o, e, order2 && !s->first[e], &hl, ul);
+        side_state(s, H, o, e, order2 && !s->first[e], &hl, ul);
         const double un = dot3(ul, nul), ut = dot3(ul, t), p = 0.5 * s->a[o] * hl * hl;
         if (kind == GF_EDGE_WALL) { /* mirror state: no mass, pressure and reflection */
             hll(hl, un, ut, s->a[o], hl, -un, ut, s->a[o], F, &fpress);
