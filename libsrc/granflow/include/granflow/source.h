@@ -49,7 +49,9 @@ double gf_sh_normal_acceleration(double g, double zeta, double curv, double u);
  * g sin(zeta) only (use gf_sh_static_source for the bounded static value). */
 double gf_sh_driving(double g, double zeta, double curv, double mu, double u);
 
-/* Static friction bound R = mu max(0, g cos zeta) (kinetic paper, Def. 1). */
+/* Static friction bound R = mu max(0, g cos zeta) (kinetic paper, Def. 1):
+ * the Coulomb law's gf_friction_static_bound per unit thickness; NaN for mu
+ * outside the law's range [0, 10]. */
 double gf_sh_static_bound(double g, double zeta, double mu);
 
 /* g~: the source at rest, beta dh/dx clamped to [g sin zeta - R,

@@ -1,4 +1,5 @@
 #include "granflow/source.h"
+#include "granflow/friction.h"
 
 #include <math.h>
 
@@ -29,7 +30,15 @@ double gf_sh_driving(double g, double zeta, double curv, double mu, double u)
 
 double gf_sh_static_bound(double g, double zeta, double mu)
 {
-    return mu * gf_sh_normal_acceleration(g, zeta, 0.0, 0.0);
+    /* the Coulomb law's static bound (friction.c, its one home) per unit
+     * thickness and density: p_b/rho = h max(0, g cos zeta) with h = 1 */
+    gf_friction f;
+    double tau;
+    const gf_friction_state st = {1.0, 0.0, gf_sh_normal_acceleration(g, zeta, 0.0, 0.0), 1.0, fabs(g)};
+    if (gf_friction_init(&f, "coulomb") || gf_friction_set(&f, "mu", mu) ||
+        gf_friction_static_bound(&f, &st, &tau))
+        return NAN; /* mu outside [0, 10] or a non-finite state */
+    return tau;
 }
 
 double gf_sh_static_source(double g, double zeta, double mu, double beta_dhdx)
