@@ -165,12 +165,12 @@ static void unknown_law_lists_valid_names(void **state)
     gf_friction f;
     assert_int_equal(gf_friction_init(&f, "coulmb"), GF_ENOTFOUND);
     assert_non_null(strstr(gf_error_detail(), "coulmb"));
-    assert_non_null(strstr(gf_error_detail(), "coulomb, mu_i, voellmy, chezy, none"));
+    assert_non_null(strstr(gf_error_detail(), "coulomb, mu_i, voellmy, chezy, samosAT, none"));
     assert_null(gf_friction_lookup("Coulomb"));
     size_t n = 0;
     for (const gf_friction_type *const *t = gf_friction_types(); *t; ++t, ++n)
         assert_ptr_equal(gf_friction_lookup((*t)->name), *t);
-    assert_int_equal(n, 5);
+    assert_int_equal(n, 6);
 }
 
 static void bad_coefficients_name_key_and_range(void **state)
@@ -216,7 +216,7 @@ static void bad_state_is_an_error_not_nan(void **state)
 static void implicit_speed_solves_backward_euler(void **state)
 {
     (void)state;
-    const char *laws[] = {"coulomb", "mu_i", "voellmy", "chezy", "none"};
+    const char *laws[] = {"coulomb", "mu_i", "voellmy", "chezy", "samosAT", "none"};
     const double h = 0.3, rho = 1500.0, g = 9.81, pb = rho * g * h * 0.9, dt = 0.01;
     for (size_t l = 0; l < sizeof laws / sizeof laws[0]; ++l)
         for (int reg = 0; reg < 2; ++reg) {
@@ -256,6 +256,70 @@ static void implicit_speed_solves_backward_euler(void **state)
     assert_int_equal(gf_friction_implicit_speed(&c, &st, -1.0, dt, &s), GF_EDOM);
 }
 
+/* samosAT against the limits of its specification (shared/papers/
+ * samosAT-friction.md): u -> 0 gives tau0 + 2 mu sigma_b (u0 = 0), large u
+ * Coulomb mu sigma_b plus the drag, whose coefficient at h = 1 m is
+ * 1/(ln(20)/0.43 + 4.13)^2 = 8.12e-3; below h = R the logarithm is 0 (drag
+ * 1/B^2); the fluidisation factor is 1 + Rs0/(Rs0 + Rs) at every speed; no
+ * contact, no yield or Coulomb part; the regularised default has no shear at rest. */
+static void samosat_limits(void **state)
+{
+    (void)state;
+    gf_friction f;
+    assert_int_equal(gf_friction_init(&f, "samosAT"), GF_SUCCESS);
+    double v;
+    assert_int_equal(gf_friction_get(&f, "mu", &v), GF_SUCCESS);
+    assert_close(v, 0.155, 0);
+    assert_int_equal(gf_friction_get(&f, "u0", &v), GF_SUCCESS);
+    assert_close(v, 1e-4, 0);
+    assert_int_equal(gf_friction_set(&f, "u0", 0.0), GF_SUCCESS);
+    assert_int_equal(gf_friction_set(&f, "tau0", 150.0), GF_SUCCESS);
+    const double rho = 200.0, h = 1.0, sig = rho * 9.81 * h * cos(30 * GF_DEG);
+    gf_friction_state st = {h, 0.0, sig, rho, 9.81};
+    gf_friction_result r;
+    /* at rest: tau0 + 2 mu sigma_b (the static bound too) */
+    assert_int_equal(gf_friction_eval(&f, &st, &r), GF_SUCCESS);
+    assert_close(r.tau, (150.0 + 2.0 * 0.155 * sig) / rho, 1e-12);
+    double tau_s;
+    assert_int_equal(gf_friction_static_bound(&f, &st, &tau_s), GF_SUCCESS);
+    assert_close(tau_s, r.tau, 1e-12);
+    /* any speed: the formula evaluated independently */
+    const double cd1 = 1.0 / pow(log(1.0 / 0.05) / 0.43 + 4.13, 2);
+    assert_close(cd1, 8.12e-3, 5e-6);
+    for (double u = 0.01; u < 200.0; u *= 3.0) {
+        st.speed = u;
+        assert_int_equal(gf_friction_eval(&f, &st, &r), GF_SUCCESS);
+        const double rs = rho * u * u / (sig + 0.001);
+        const double expect = (150.0 + 0.155 * (1.0 + 0.222 / (0.222 + rs)) * sig) / rho + cd1 * u * u;
+        assert_close(r.tau, expect, 1e-12 * expect);
+        assert_close(r.nu * u, r.tau, 1e-12 * r.tau);
+    }
+    /* large speed: the Coulomb factor tends to 1 */
+    st.speed = 1e4;
+    assert_int_equal(gf_friction_eval(&f, &st, &r), GF_SUCCESS);
+    assert_close(r.tau - cd1 * 1e8, (150.0 + 0.155 * sig) / rho, 1e-6 * r.tau);
+    /* h below the roughness length R: ln(h/R) = 0, drag 1/B^2 */
+    st.h = 0.01;
+    st.speed = 2.0;
+    assert_int_equal(gf_friction_set(&f, "tau0", 0.0), GF_SUCCESS);
+    assert_int_equal(gf_friction_eval(&f, &st, &r), GF_SUCCESS);
+    const double rs = rho * 4.0 / (sig + 0.001);
+    assert_close(r.tau, 0.155 * (1.0 + 0.222 / (0.222 + rs)) * sig / rho + 4.0 / (4.13 * 4.13), 1e-12);
+    /* lift-off: the drag only */
+    st.pb = -1.0;
+    assert_int_equal(gf_friction_eval(&f, &st, &r), GF_SUCCESS);
+    assert_close(r.tau, 4.0 / (4.13 * 4.13), 1e-15);
+    /* the regularised default: no shear at rest, so the implicit scheme's nu is finite */
+    gf_friction g;
+    assert_int_equal(gf_friction_init(&g, "samosAT"), GF_SUCCESS);
+    gf_friction_state rest = {h, 0.0, sig, rho, 9.81};
+    assert_int_equal(gf_friction_eval(&g, &rest, &r), GF_SUCCESS);
+    assert_close(r.tau, 0.0, 0);
+    assert_true(isfinite(r.nu));
+    /* B must be positive */
+    assert_int_equal(gf_friction_set(&g, "B", 0.0), GF_EDOM);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -266,6 +330,7 @@ int main(void)
         cmocka_unit_test(implicit_update_never_reverses_velocity),
         cmocka_unit_test(static_bound_is_the_coulomb_limit),
         cmocka_unit_test(implicit_speed_solves_backward_euler),
+        cmocka_unit_test(samosat_limits),
         cmocka_unit_test(unknown_law_lists_valid_names),
         cmocka_unit_test(bad_coefficients_name_key_and_range),
         cmocka_unit_test(bad_state_is_an_error_not_nan),

@@ -20,6 +20,10 @@
  *   voellmy   mu p_b/rho |u|/(|u|+u0) + g|u|^2/xi        mu (0.2), xi (1000 m/s^2),
  *                                                         u0 (1e-4 m/s)
  *   chezy     g |u|^2 / C^2, eq. 71                      C (40 m^0.5/s)
+ *   samosAT   (tau0 + mu (1 + Rs0/(Rs0+Rs)) p_b)/rho     mu (0.155), tau0 (0 Pa), Rs0 (0.222),
+ *             x |u|/(|u|+u0) + u^2/(ln(h/R)/kappa + B)^2  kappa (0.43), R (0.05 m), B (4.13),
+ *             Rs = rho u^2/(p_b + 0.001 Pa); ln(h/R) = 0  u0 (1e-4 m/s)   [AvaFrame com1DFA;
+ *             for h < R (Sampl 2007)                     shared/papers/samosAT-friction.md]
  *   none      0
  *
  * u0 regularises |u|/|u| near rest (paper eq. 24).  With u0 = 0 (exact
@@ -80,6 +84,7 @@ extern const gf_friction_type *const gf_friction_coulomb;
 extern const gf_friction_type *const gf_friction_mu_i;
 extern const gf_friction_type *const gf_friction_voellmy;
 extern const gf_friction_type *const gf_friction_chezy;
+extern const gf_friction_type *const gf_friction_samosat;
 extern const gf_friction_type *const gf_friction_none;
 
 /* A friction law with its coefficients. */
@@ -91,7 +96,7 @@ typedef struct gf_friction {
 /* NULL-terminated table of all laws. */
 const gf_friction_type *const *gf_friction_types(void);
 
-/* "coulomb, mu_i, voellmy, chezy, none" — for error messages. */
+/* "coulomb, mu_i, voellmy, chezy, samosAT, none" — for error messages. */
 const char *gf_friction_names(void);
 
 /* Type by name; NULL when unknown. */
@@ -145,7 +150,9 @@ double gf_friction_decelerate(double u, double decel_dt);
  * rest can hold the trial momentum, dt tau(0) >= M, the face stops: *speed =
  * 0 exactly (Coulomb's static condition; with u0 = 0 tau(0) is the static
  * bound mu p_b/rho, with u0 > 0 it is 0 and material only creeps to rest).
- * Every law's tau is non-decreasing in s, so the root is unique; coulomb
+ * For a tau non-decreasing in s the root is unique (all laws but samosAT,
+ * whose Coulomb factor falls with speed: then a root in [0, M/h] is taken,
+ * unique where h/dt exceeds the factor's fall); coulomb
  * (any u0), mu_i and voellmy with u0 = 0 are solved in closed form, the others
  * by Illinois regula falsi
  * with bisection steps, to 1e-14 relative.  s->speed is not

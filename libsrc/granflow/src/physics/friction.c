@@ -99,6 +99,38 @@ static void chezy_eval(const double *p, const gf_friction_state *s, gf_friction_
 static const gf_friction_type chezy_type = {
     "chezy", "Chezy friction, finite-area paper eq. 71", 1, chezy_params, NULL, chezy_eval};
 
+/* ---- samosAT (AvaFrame com1DFA's standard snow law; shared/papers/samosAT-friction.md) ---- */
+static const gf_friction_param samosat_params[] = {
+    {"mu", "-", "Coulomb coefficient (AvaFrame standard 0.155; Medium 0.17, Small 0.22)", 0.155, 0.0, 10.0},
+    {"tau0", "Pa", "yield stress", 0.0, 0.0, 1e6},
+    {"Rs0", "-", "fluidisation ratio scale", 0.222, 1e-12, 1e6},
+    {"kappa", "-", "von Karman constant of the drag profile", 0.43, 1e-12, 10.0},
+    {"R", "m", "roughness length of the drag profile", 0.05, 1e-12, 10.0},
+    {"B", "-", "drag profile constant (> 0: the drag of h <= R is 1/B^2)", 4.13, 1e-12, 1e3},
+    {"u0", "m/s", "regularisation speed of the Coulomb and yield parts", 1e-4, 0.0, 1.0},
+};
+/* tau_b = tau0 + mu (1 + Rs0/(Rs0 + Rs)) sigma_b + rho u^2 / (ln(h/R)/kappa + B)^2,
+ * Rs = rho u^2/(sigma_b + 0.001 Pa), ln(h/R) = 0 for h < R (the specification);
+ * the yield and Coulomb parts need contact (sigma_b > 0) and carry the factor
+ * |u|/(|u| + u0) of the other laws, so tau at rest is tau0 + 2 mu sigma_b with
+ * u0 = 0 (exact) and 0 with u0 > 0 (regularised, as the implicit scheme needs). */
+static void samosat_eval(const double *p, const gf_friction_state *s, gf_friction_result *r)
+{
+    const double mu = p[0], tau0 = p[1], rs0 = p[2], kappa = p[3], R = p[4], B = p[5], u0 = p[6];
+    const double u = s->speed, sig = s->pb > 0.0 ? s->pb : 0.0;
+    const double rs = s->rho * u * u / (sig + 0.001);
+    const double mu_eff = mu * (1.0 + rs0 / (rs0 + rs)) + (sig > 0.0 ? tau0 / sig : 0.0);
+    double tau, nu;
+    coulomb_part(mu_eff, u0, s, &tau, &nu);
+    const double lr = s->h > R ? log(s->h / R) : 0.0, den = lr / kappa + B;
+    const double cd = 1.0 / (den * den); /* den >= B > 0 */
+    r->tau = tau + cd * u * u;
+    r->nu = nu + cd * u;
+}
+static const gf_friction_type samosat_type = {
+    "samosAT", "samosAT snow friction (Sampl 2007; AvaFrame's standard)", 7, samosat_params, NULL,
+    samosat_eval};
+
 /* ---- none --------------------------------------------------------------- */
 static void none_eval(const double *p, const gf_friction_state *s, gf_friction_result *r)
 {
@@ -113,14 +145,15 @@ const gf_friction_type *const gf_friction_coulomb = &coulomb_type;
 const gf_friction_type *const gf_friction_mu_i = &mu_i_type;
 const gf_friction_type *const gf_friction_voellmy = &voellmy_type;
 const gf_friction_type *const gf_friction_chezy = &chezy_type;
+const gf_friction_type *const gf_friction_samosat = &samosat_type;
 const gf_friction_type *const gf_friction_none = &none_type;
 
-static const gf_friction_type *const all_types[] = {&coulomb_type, &mu_i_type, &voellmy_type,
-                                                     &chezy_type, &none_type, NULL};
+static const gf_friction_type *const all_types[] = {&coulomb_type, &mu_i_type, &voellmy_type, &chezy_type,
+                                                     &samosat_type, &none_type, NULL};
 
 const gf_friction_type *const *gf_friction_types(void) { return all_types; }
 
-const char *gf_friction_names(void) { return "coulomb, mu_i, voellmy, chezy, none"; }
+const char *gf_friction_names(void) { return "coulomb, mu_i, voellmy, chezy, samosAT, none"; }
 
 const gf_friction_type *gf_friction_lookup(const char *name)
 {
