@@ -316,6 +316,12 @@ static void samosat_limits(void **state)
     assert_int_equal(gf_friction_eval(&g, &rest, &r), GF_SUCCESS);
     assert_close(r.tau, 0.0, 0);
     assert_true(isfinite(r.nu));
+    /* a denormal basal pressure with a yield stress stays finite (no tau0/sigma_b) */
+    assert_int_equal(gf_friction_set(&g, "tau0", 150.0), GF_SUCCESS);
+    gf_friction_state thin = {h, 1.0, 1e-310, rho, 9.81};
+    assert_int_equal(gf_friction_eval(&g, &thin, &r), GF_SUCCESS);
+    assert_true(isfinite(r.tau) && isfinite(r.nu));
+    assert_close(r.tau, 150.0 / rho * 1.0 / (1.0 + 1e-4) + cd1, 1e-12);
     /* B must be positive */
     assert_int_equal(gf_friction_set(&g, "B", 0.0), GF_EDOM);
 }

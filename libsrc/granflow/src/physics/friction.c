@@ -119,9 +119,18 @@ static void samosat_eval(const double *p, const gf_friction_state *s, gf_frictio
     const double mu = p[0], tau0 = p[1], rs0 = p[2], kappa = p[3], R = p[4], B = p[5], u0 = p[6];
     const double u = s->speed, sig = s->pb > 0.0 ? s->pb : 0.0;
     const double rs = s->rho * u * u / (sig + 0.001);
-    const double mu_eff = mu * (1.0 + rs0 / (rs0 + rs)) + (sig > 0.0 ? tau0 / sig : 0.0);
     double tau, nu;
-    coulomb_part(mu_eff, u0, s, &tau, &nu);
+    coulomb_part(mu * (1.0 + rs0 / (rs0 + rs)), u0, s, &tau, &nu);
+    if (sig > 0.0 && tau0 > 0.0) { /* yield part, regularised like the Coulomb part */
+        const double ty = tau0 / s->rho, denom = u + u0;
+        if (denom == 0.0) {
+            tau += ty;
+            nu = HUGE_VAL;
+        } else {
+            tau += ty * u / denom;
+            nu += ty / denom;
+        }
+    }
     const double lr = s->h > R ? log(s->h / R) : 0.0, den = lr / kappa + B;
     const double cd = 1.0 / (den * den); /* den >= B > 0 */
     r->tau = tau + cd * u * u;
