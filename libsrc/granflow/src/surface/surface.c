@@ -41,6 +41,7 @@ struct gf_surface {
     size_t n_act_f, n_act_e, n_act_owned, n_prev_f;
     double *a_save;
     double *lvl; /* ring level for the parallel active set (nt) */
+    int active_fresh; /* the active set matches the state (built since the last change) */
     double h_scale;
     double u_slow; /* speed below which a face next to one at rest is slow: dt |g| */
     gf_surface_stats st;
@@ -290,6 +291,7 @@ static gf_status exchange(gf_surface *s, double *field, int ncomp)
 gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *mom)
 {
     const size_t nf = s->m.n_faces;
+    s->active_fresh = 0;
     s->h_scale = 0.0;
     for (size_t f = 0; f < nf; ++f) {
         if (!isfinite(h[f]) || h[f] < 0.0)
@@ -325,6 +327,8 @@ gf_status gf_surface_set_inflow(gf_surface *s, size_t edge, double h, const doub
                        edge);
     const double *n = s->m.normal + 3 * s->m.owner[edge], un = dot3(u, n);
     double *b = s->inflow + 4 * edge;
+    if ((b[0] > 0.0) != (h > 0.0)) /* the edge starts or stops bringing material */
+        s->active_fresh = 0;
     b[0] = h;
     for (int k = 0; k < 3; ++k)
         b[1 + k] = u[k] - un * n[k];
@@ -437,6 +441,7 @@ static gf_status build_active(gf_surface *s)
             }
         }
     }
+    s->active_fresh = 1;
     return GF_SUCCESS;
 }
 
@@ -840,7 +845,8 @@ static void copy_active(gf_surface *s, const double *h, const double *m, double 
 static gf_status step_once(gf_surface *s, double dt)
 {
     gf_status st;
-    if ((st = exchange(s, s->h, 1)) || (st = build_active(s)))
+    /* the set of gf_surface_max_dt, unless the state changed since */
+    if (!s->active_fresh && ((st = exchange(s, s->h, 1)) || (st = build_active(s))))
         return st;
     for (size_t i = 0; i < s->n_act_e; ++i)
         s->edge_vol_step[s->act_e[i]] = 0.0;
@@ -866,6 +872,7 @@ static gf_status step_once(gf_surface *s, double dt)
         const int e = s->act_e[i];
         s->edge_vol[e] += s->edge_vol_step[e];
     }
+    s->active_fresh = 0; /* h changed */
     s->st.steps++;
     s->st.face_updates += s->n_act_owned;
     s->st.active_faces = s->n_act_owned;
@@ -898,7 +905,7 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
 {
     gf_status st;
     if ((st = exchange(s, s->h, 1)) || (st = exchange(s, s->mom, 3)) || (st = exchange(s, s->a, 1)) ||
-        (st = build_active(s)))
+        (!s->active_fresh && (st = build_active(s))))
         return st;
     const gf_surface_mesh *m = &s->m;
     const size_t nf = m->n_faces;
