@@ -5,23 +5,32 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Coulomb-type part mu p_b/rho |u|/(|u|+u0) and its implicit coefficient. */
-static void coulomb_part(double mu, double u0, const gf_friction_state *s, double *tau, double *nu)
+/* A rate-independent shear (per unit density) with the regularisation
+ * |u|/(|u|+u0) of finite-area paper eq. 24, and its implicit coefficient
+ * (eq. 60); at rest with u0 = 0 the full value, infinitely stiff. */
+static void regularised_part(double stress, double u0, double speed, double *tau, double *nu)
 {
-    const double p = s->pb > 0.0 ? s->pb / s->rho : 0.0;
-    if (p == 0.0 || mu == 0.0) {
+    if (stress == 0.0) {
         *tau = 0.0;
         *nu = 0.0;
         return;
     }
-    const double denom = s->speed + u0;
-    if (denom == 0.0) { /* exact Coulomb at rest: static bound, infinite stiffness */
-        *tau = mu * p;
+    const double denom = speed + u0;
+    if (denom == 0.0) { /* exact at rest: static bound, infinite stiffness */
+        *tau = stress;
         *nu = HUGE_VAL;
         return;
     }
-    *nu = mu * p / denom;      /* finite-area paper eq. 60 */
-    *tau = *nu * s->speed;     /* eq. 24 */
+    *nu = stress / denom;      /* finite-area paper eq. 60 */
+    *tau = *nu * speed;        /* eq. 24 */
+}
+
+/* Coulomb-type part mu p_b/rho |u|/(|u|+u0) and its implicit coefficient;
+ * none without contact (p_b <= 0). */
+static void coulomb_part(double mu, double u0, const gf_friction_state *s, double *tau, double *nu)
+{
+    const double p = s->pb > 0.0 ? s->pb / s->rho : 0.0;
+    regularised_part(mu * p, u0, s->speed, tau, nu);
 }
 
 /* ---- coulomb ---------------------------------------------------------- */
@@ -121,16 +130,10 @@ static void samosat_eval(const double *p, const gf_friction_state *s, gf_frictio
     const double rs = s->rho * u * u / (sig + 0.001);
     double tau, nu;
     coulomb_part(mu * (1.0 + rs0 / (rs0 + rs)), u0, s, &tau, &nu);
-    if (sig > 0.0 && tau0 > 0.0) { /* yield part, regularised like the Coulomb part */
-        const double ty = tau0 / s->rho, denom = u + u0;
-        if (denom == 0.0) {
-            tau += ty;
-            nu = HUGE_VAL;
-        } else {
-            tau += ty * u / denom;
-            nu += ty / denom;
-        }
-    }
+    double ty, nuy; /* yield part, regularised like the Coulomb part, with contact only */
+    regularised_part(sig > 0.0 ? tau0 / s->rho : 0.0, u0, u, &ty, &nuy);
+    tau += ty;
+    nu += nuy;
     const double lr = s->h > R ? log(s->h / R) : 0.0, den = lr / kappa + B;
     const double cd = 1.0 / (den * den); /* den >= B > 0 */
     r->tau = tau + cd * u * u;
