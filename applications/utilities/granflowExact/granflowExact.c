@@ -48,6 +48,21 @@ static void usage(void)
     exit(2);
 }
 
+/* The next position on standard input: the leading number of a line (the
+ * first column of a CSV); lines without one (a header, blanks) are skipped.
+ * 0 at the end of the input. */
+static int next_position(double *x)
+{
+    char line[4096];
+    while (fgets(line, sizeof line, stdin)) {
+        char *end;
+        *x = strtod(line, &end);
+        if (end != line)
+            return 1;
+    }
+    return 0;
+}
+
 /* A tabulated profile (CSV columns x, zeta in degrees; the shared strict
  * parser gf_csv.h); exits with its message on bad input. */
 static gf_topography *read_table(const char *path)
@@ -92,13 +107,9 @@ static int chute(char **argv)
     (void)hi;
     double X0, Z0;
     gf_topography_position(t, lo > 0.0 ? lo : 0.0, &X0, &Z0);
-    char line[4096];
     printf("s,X,Z,zeta\n");
-    while (fgets(line, sizeof line, stdin)) {
-        char *end;
-        const double x = strtod(line, &end);
-        if (end == line)
-            continue; /* header or blank */
+    double x;
+    while (next_position(&x)) {
         double X, Z, zeta, kappa;
         if (gf_topography_position(t, x, &X, &Z) != GF_SUCCESS || gf_topography_eval(t, x, &zeta, &kappa) != GF_SUCCESS) {
             fprintf(stderr, "granflowExact: %s\n", gf_error_detail());
@@ -143,13 +154,9 @@ int main(int argc, char **argv)
         fprintf(stderr, "Dressler t = %g: tip x = %.6g (u = %.6g m/s, h = %.6g m), front x = %.6g\n",
                 t, dp.x_tip, dp.u_tip, dp.h_tip, dp.x_front);
     }
-    char line[4096];
     printf("x,h_exact,u_exact\n");
-    while (fgets(line, sizeof line, stdin)) {
-        char *end;
-        const double x = strtod(line, &end);
-        if (end == line)
-            continue; /* header or blank */
+    double x;
+    while (next_position(&x)) {
         double h, u;
         if (riemann)
             gf_riemann_sample(&rp, x, t, &h, &u);
