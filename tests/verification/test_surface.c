@@ -46,6 +46,18 @@ static void coulomb(gf_surface_config *c, double delta_deg)
     assert_int_equal(gf_friction_set(&c->friction, "u0", 0.0), GF_SUCCESS);
 }
 
+/* A paraboloid pile of radius 2 m and height h0 centred at arc length sc
+ * on the centre line: h = h0 (1 - r^2/4) (allocated, one value per face). */
+static double *paraboloid(const strip_mesh *sm, double sc, double h0)
+{
+    double *h = calloc(sm->m.n_faces, sizeof *h);
+    for (size_t f = 0; f < sm->m.n_faces; ++f) {
+        const double ds = sm->s_of_face[f] - sc, y = sm->centre[3 * f + 1], r2 = ds * ds + y * y;
+        h[f] = r2 < 4.0 ? h0 * (1.0 - r2 / 4.0) : 0.0;
+    }
+    return h;
+}
+
 /* A Coulomb pile (paraboloid cap, 0.4 m high, 2 m radius) on a 20 deg plane
  * and on the curved 40-to-10 deg transition, bed friction 45 deg: friction
  * holds every face, so the pile stays exactly at rest (|m| = 0, h unchanged
@@ -61,12 +73,7 @@ static void pile_at_rest_on_plane_and_curved_bed(void **state)
         coulomb(&c, 45);
         gf_surface *s = make_solver(sm, &c);
         const size_t nf = sm->m.n_faces;
-        double *h = calloc(nf, sizeof *h);
-        const double sc = curved ? 15.0 : 10.0;
-        for (size_t f = 0; f < nf; ++f) {
-            const double ds = sm->s_of_face[f] - sc, y = sm->centre[3 * f + 1], r2 = ds * ds + y * y;
-            h[f] = r2 < 4.0 ? 0.4 * (1.0 - r2 / 4.0) : 0.0;
-        }
+        double *h = paraboloid(sm, curved ? 15.0 : 10.0, 0.4);
         assert_int_equal(gf_surface_set_state(s, h, NULL), GF_SUCCESS);
         double dmax = 0.0, mmax = 0.0;
         for (int n = 0; n < 400; ++n) {
@@ -102,11 +109,7 @@ static void mass_conserved_in_a_closed_box(void **state)
     coulomb(&c, 20);
     gf_surface *s = make_solver(sm, &c);
     const size_t nf = sm->m.n_faces;
-    double *h = calloc(nf, sizeof *h);
-    for (size_t f = 0; f < nf; ++f) {
-        const double ds = sm->s_of_face[f] - 4.0, y = sm->centre[3 * f + 1], r2 = ds * ds + y * y;
-        h[f] = r2 < 4.0 ? 0.5 * (1.0 - r2 / 4.0) : 0.0;
-    }
+    double *h = paraboloid(sm, 4.0, 0.5);
     assert_int_equal(gf_surface_set_state(s, h, NULL), GF_SUCCESS);
     const double v0 = gf_surface_volume(s);
     double t = 0.0;
