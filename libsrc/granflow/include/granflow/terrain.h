@@ -1,0 +1,133 @@
+/*
+ * granflow — real terrain: digital elevation models, release polygons and
+ * georeferenced rasters, through GDAL/OGR (libgranflowTerrain).
+ *
+ * This is the only part of granflow that depends on GDAL; it is a library of
+ * its own (libgranflowTerrain) so that libgranflow stays GSL-only.  Nothing
+ * here parses a raster or a shapefile by hand: GDAL reads the DEM (any raster
+ * format GDAL knows: ESRI ASCII grid, GeoTIFF, ...) and writes the rasters,
+ * OGR reads the polygons (shapefile, GeoJSON, ...).
+ *
+ * Grids.  A DEM value is the elevation at its pixel centre (GDAL's pixel
+ * corner geotransform plus half a pixel); the area mesh's nodes are the
+ * centres of every k-th pixel (coarsening by k), and a mesh face is the quad
+ * between four neighbouring nodes, all four valid (not NODATA) and, when a
+ * crop is given, with its centre inside the crop.  Node (I, J) is pixel
+ * (column c0 + k I, row r0 + k J); rows run as in the raster (north to south
+ * for a north-up DEM).
+ *
+ * Errors name the file and what is wrong (gf_error_detail()).
+ */
+#ifndef GRANFLOW_TERRAIN_H
+#define GRANFLOW_TERRAIN_H
+
+#include <stddef.h>
+
+#include "granflow/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A single-band raster on a north-up grid with square pixels. */
+typedef struct gf_raster {
+    int nx, ny;       /* columns, rows */
+    double gt[6];     /* GDAL geotransform: pixel corner (col, row) -> (gt0 + col gt1, gt3 + row gt5) */
+    double nodata;    /* NODATA value of the source (-9999 when it had none) */
+    char *wkt;        /* coordinate reference system as WKT ("" when the source had none) */
+    double *z;        /* nx ny values, row-major; NAN where NODATA */
+    size_t n_valid;   /* values that are not NODATA */
+} gf_raster;
+
+/* Read band 1 of a raster through GDAL.  Refused with GF_EIO/GF_EDOM and the
+ * file's name: a file GDAL cannot open, no georeferencing (no geotransform),
+ * a rotated grid, pixels that are not square (mixed cell sizes), only NODATA,
+ * non-finite values. */
+gf_status gf_raster_read(const char *path, gf_raster *r);
+void gf_raster_free(gf_raster *r);
+
+/* Georeferenced centre of pixel (col, row) (fractional indices allowed). */
+void gf_raster_centre(const gf_raster *r, double col, double row, double *x, double *y);
+
+/* Write values [nx ny] (NAN -> the grid's NODATA) on grid's size,
+ * geotransform and CRS.  driver: "AAIGrid" (ESRI ASCII grid, 9 significant
+ * digits, with a .prj when there is a CRS; GDAL reads it back as float32) or
+ * "GTiff" (float64, deflate-compressed). */
+gf_status gf_raster_write(const char *path, const char *driver, const gf_raster *grid,
+                          const double *values);
+
+/* Release (or crop) polygons: every polygon of every feature of the first
+ * layer (a multipolygon gives its parts), exterior ring and holes, each with
+ * a value. */
+typedef struct gf_polygons {
+    size_t n;          /* polygons */
+    size_t *ring0;     /* [n+1] first ring of each polygon (ring ring0[p] is the exterior) */
+    size_t *pt0;       /* [rings+1] first point of each ring */
+    double *xy;        /* points, x y interleaved, rings closed or not */
+    double *value;     /* [n] the attribute's (or the given) value */
+    double *box;       /* [4n] xmin ymin xmax ymax of each polygon */
+    char *wkt;         /* CRS of the layer ("" when none) */
+} gf_polygons;
+
+/* Read the polygons of the first layer of a vector file (shapefile,
+ * GeoJSON, ... through OGR).  attribute: the numeric field giving each
+ * polygon's value (refused when missing, with the fields there are, or when
+ * a value is not finite or negative), or NULL to give every polygon
+ * 'value'.  Refused: a file OGR cannot open, no polygon, a geometry that is
+ * not a polygon. */
+gf_status gf_polygons_read(const char *path, const char *attribute, double value,
+                           gf_polygons *p);
+void gf_polygons_free(gf_polygons *p);
+
+/* Index of the last polygon containing (x, y) (holes excluded; a later
+ * polygon overrides an earlier one), -1 when none (even-odd ray casting). */
+long gf_polygons_locate(const gf_polygons *p, double x, double y);
+
+/* Plane area of polygon k (exterior minus holes, shoelace formula). */
+double gf_polygons_area(const gf_polygons *p, size_t k);
+
+/* The node grid of an area mesh on a DEM (see the top of this file). */
+typedef struct gf_terrain_grid {
+    int c0, r0, k;        /* pixel of node (0, 0), coarsening */
+    int ni, nj;           /* nodes along columns and rows */
+    unsigned char *quad;  /* [(ni-1)(nj-1)], index I + (ni-1) J: 1 = a face of the mesh */
+    size_t n_quads;       /* faces */
+} gf_terrain_grid;
+
+/* The mesh's grid on dem: coarsening k >= 1, optional crop box (xmin ymin
+ * xmax ymax, georeferenced; NULL for none) and crop polygons (NULL for
+ * none).  Refused when no face remains. */
+gf_status gf_terrain_grid_make(const gf_raster *dem, int k, const double *box,
+                               const gf_polygons *crop, gf_terrain_grid *g);
+void gf_terrain_grid_free(gf_terrain_grid *g);
+
+/* Georeferenced position (x, y, z) of node (I, J). */
+void gf_terrain_node(const gf_raster *dem, const gf_terrain_grid *g, int I, int J, double xyz[3]);
+
+/* Values at the faces of a mesh made by gf_terrain_grid_make (georeferenced
+ * face centres xy [2n], areas [n], values [n]) onto every pixel of the DEM:
+ * a node takes the area-weighted mean of its faces, a pixel between nodes
+ * (k > 1) the bilinear interpolation in its face's quad, and pixels outside
+ * the mesh NAN.  A face centre outside the grid is GF_EDOM naming it. */
+gf_status gf_terrain_to_raster(const gf_raster *dem, const gf_terrain_grid *g, size_t n,
+                               const double *xy, const double *area, const double *val,
+                               double *out);
+
+/* Outline of the pixels with values >= threshold (GDAL's polygonize):
+ * GeoJSON polygons in the grid's CRS with their area [m2]; returns the
+ * affected area (pixels x pixel area) in *area when not NULL. */
+gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
+                            double threshold, double *area);
+
+/* PNG map: the hillshade of dem (sun from the north-west, 45 deg high)
+ * tinted by values where values >= vmin, colours from vmin to vmax on a
+ * white-yellow-red-purple scale, a scale bar of that colour ramp along the
+ * bottom edge. */
+gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *values,
+                        double vmin, double vmax);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

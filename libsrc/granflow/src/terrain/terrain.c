@@ -1,0 +1,754 @@
+/* Real terrain through GDAL/OGR: see granflow/terrain.h. */
+#include "granflow/terrain.h"
+#include "internal.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <gdal_alg.h>
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static void gdal_init(void)
+{
+    static int done = 0;
+    if (!done) {
+        GDALAllRegister();
+        done = 1;
+    }
+}
+
+/* GDAL's last error text, or a fixed one */
+static const char *gdal_msg(void)
+{
+    const char *m = CPLGetLastErrorMsg();
+    return (m && *m) ? m : "no detail from GDAL";
+}
+
+static char *dup_str(const char *s)
+{
+    const size_t n = strlen(s ? s : "") + 1;
+    char *d = malloc(n);
+    if (d)
+        memcpy(d, s ? s : "", n);
+    return d;
+}
+
+/*---------------------------------------------------------------- rasters --*/
+
+gf_status gf_raster_read(const char *path, gf_raster *r)
+{
+    if (!path || !r)
+        return gf_fail(GF_EINVAL, "gf_raster_read: null argument");
+    memset(r, 0, sizeof *r);
+    gdal_init();
+    if (access(path, R_OK) != 0)
+        return gf_fail(GF_EIO, "DEM %s: no such file or not readable", path);
+    CPLErrorReset();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_READONLY, NULL, NULL, NULL);
+    CPLPopErrorHandler();
+    if (!ds)
+        return gf_fail(GF_EIO, "DEM %s: not a raster GDAL can read (%s)", path, gdal_msg());
+    gf_status st = GF_SUCCESS;
+    double gt[6];
+    GDALRasterBandH band = GDALGetRasterCount(ds) >= 1 ? GDALGetRasterBand(ds, 1) : NULL;
+    if (!band) {
+        st = gf_fail(GF_EIO, "DEM %s: has no raster band", path);
+        goto done;
+    }
+    if (GDALGetGeoTransform(ds, gt) != CE_None) {
+        st = gf_fail(GF_EDOM, "DEM %s: no georeferencing (no geotransform); a DEM needs its"
+                              " origin and cell size", path);
+        goto done;
+    }
+    if (gt[2] != 0.0 || gt[4] != 0.0) {
+        st = gf_fail(GF_EDOM, "DEM %s: rotated grid (geotransform terms %g, %g); only north-up"
+                              " grids are supported", path, gt[2], gt[4]);
+        goto done;
+    }
+    if (!(gt[1] > 0.0) || !(gt[5] < 0.0)) {
+        st = gf_fail(GF_EDOM, "DEM %s: cell size %g x %g; a north-up grid has dx > 0 and"
+                              " dy < 0 in GDAL's convention", path, gt[1], gt[5]);
+        goto done;
+    }
+    if (fabs(gt[1] + gt[5]) > 1e-9 * gt[1]) {
+        st = gf_fail(GF_EDOM, "DEM %s: mixed cell sizes dx = %.10g, dy = %.10g; the cells must"
+                              " be square", path, gt[1], -gt[5]);
+        goto done;
+    }
+    r->nx = GDALGetRasterXSize(ds), r->ny = GDALGetRasterYSize(ds);
+    if (r->nx < 2 || r->ny < 2) {
+        st = gf_fail(GF_EDOM, "DEM %s: %d x %d cells; at least 2 x 2 are needed", path, r->nx, r->ny);
+        goto done;
+    }
+    memcpy(r->gt, gt, sizeof gt);
+    int has_nd = 0;
+    const double nd = GDALGetRasterNoDataValue(band, &has_nd);
+    r->nodata = has_nd ? nd : -9999.0;
+    r->wkt = dup_str(GDALGetProjectionRef(ds));
+    r->z = malloc(sizeof(double) * (size_t)r->nx * (size_t)r->ny);
+    if (!r->z || !r->wkt) {
+        st = gf_fail(GF_ENOMEM, "DEM %s: out of memory for %d x %d cells", path, r->nx, r->ny);
+        goto done;
+    }
+    if (GDALRasterIO(band, GF_Read, 0, 0, r->nx, r->ny, r->z, r->nx, r->ny, GDT_Float64, 0, 0) != CE_None) {
+        st = gf_fail(GF_EIO, "DEM %s: reading the elevations failed (%s)", path, gdal_msg());
+        goto done;
+    }
+    const size_t n = (size_t)r->nx * (size_t)r->ny;
+    for (size_t i = 0; i < n; ++i) {
+        if ((has_nd && r->z[i] == nd) || isnan(r->z[i]))
+            r->z[i] = NAN;
+        else if (!isfinite(r->z[i])) {
+            st = gf_fail(GF_ENONFINITE, "DEM %s: elevation %g at column %zu, row %zu is not finite",
+                         path, r->z[i], i % (size_t)r->nx, i / (size_t)r->nx);
+            goto done;
+        } else
+            ++r->n_valid;
+    }
+    if (r->n_valid == 0)
+        st = gf_fail(GF_EDOM, "DEM %s: every cell is NODATA (%g)", path, r->nodata);
+done:
+    GDALClose(ds);
+    if (st)
+        gf_raster_free(r);
+    return st;
+}
+
+void gf_raster_free(gf_raster *r)
+{
+    if (!r)
+        return;
+    free(r->z);
+    free(r->wkt);
+    r->z = NULL, r->wkt = NULL;
+}
+
+void gf_raster_centre(const gf_raster *r, double col, double row, double *x, double *y)
+{
+    *x = r->gt[0] + (col + 0.5) * r->gt[1];
+    *y = r->gt[3] + (row + 0.5) * r->gt[5];
+}
+
+/* An in-memory copy of grid with values (NAN -> NODATA) of type t and nb bands */
+static GDALDatasetH mem_raster(const gf_raster *grid, int nx, int ny, int nb, GDALDataType t)
+{
+    GDALDriverH mem = GDALGetDriverByName("MEM");
+    if (!mem)
+        return NULL;
+    GDALDatasetH ds = GDALCreate(mem, "", nx, ny, nb, t, NULL);
+    if (ds && grid) {
+        double gt[6];
+        memcpy(gt, grid->gt, sizeof gt);
+        GDALSetGeoTransform(ds, gt);
+        if (grid->wkt && *grid->wkt)
+            GDALSetProjection(ds, grid->wkt);
+    }
+    return ds;
+}
+
+gf_status gf_raster_write(const char *path, const char *driver, const gf_raster *grid,
+                          const double *values)
+{
+    if (!path || !driver || !grid || !values)
+        return gf_fail(GF_EINVAL, "gf_raster_write: null argument");
+    gdal_init();
+    const int is_asc = strcmp(driver, "AAIGrid") == 0, is_tif = strcmp(driver, "GTiff") == 0;
+    if (!is_asc && !is_tif)
+        return gf_fail(GF_ENOTFOUND, "raster %s: driver %s; allowed AAIGrid or GTiff", path, driver);
+    GDALDriverH drv = GDALGetDriverByName(driver);
+    if (!drv)
+        return gf_fail(GF_ENOTFOUND, "raster %s: GDAL has no %s driver", path, driver);
+    const size_t n = (size_t)grid->nx * (size_t)grid->ny;
+    double *buf = malloc(sizeof(double) * n);
+    if (!buf)
+        return gf_fail(GF_ENOMEM, "raster %s: out of memory", path);
+    for (size_t i = 0; i < n; ++i)
+        buf[i] = isfinite(values[i]) ? values[i] : grid->nodata;
+    GDALDatasetH mem = mem_raster(grid, grid->nx, grid->ny, 1, GDT_Float64);
+    gf_status st = GF_SUCCESS;
+    if (!mem) {
+        st = gf_fail(GF_EIO, "raster %s: no in-memory dataset (%s)", path, gdal_msg());
+        goto done;
+    }
+    GDALRasterBandH b = GDALGetRasterBand(mem, 1);
+    GDALSetRasterNoDataValue(b, grid->nodata);
+    if (GDALRasterIO(b, GF_Write, 0, 0, grid->nx, grid->ny, buf, grid->nx, grid->ny, GDT_Float64, 0, 0)
+        != CE_None) {
+        st = gf_fail(GF_EIO, "raster %s: %s", path, gdal_msg());
+        goto done;
+    }
+    /* ESRI ASCII: 9 significant digits (float32 rasters are exact); GeoTIFF:
+     * float64 */
+    char *asc_opts[] = {"SIGNIFICANT_DIGITS=9", NULL};
+    char *tif_opts[] = {"COMPRESS=DEFLATE", NULL};
+    CPLErrorReset();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALDatasetH out = GDALCreateCopy(drv, path, mem, FALSE, is_asc ? asc_opts : tif_opts, NULL, NULL);
+    CPLPopErrorHandler();
+    if (!out)
+        st = gf_fail(GF_EIO, "raster %s: GDAL cannot write it (%s)", path, gdal_msg());
+    else
+        GDALClose(out);
+done:
+    if (mem)
+        GDALClose(mem);
+    free(buf);
+    return st;
+}
+
+/*--------------------------------------------------------------- polygons --*/
+
+typedef struct {
+    double *d;
+    size_t n, cap;
+} dvec;
+typedef struct {
+    size_t *d;
+    size_t n, cap;
+} zvec;
+
+static int dvec_push(dvec *v, double x)
+{
+    if (v->n == v->cap) {
+        const size_t c = v->cap ? 2 * v->cap : 64;
+        double *d = realloc(v->d, c * sizeof *d);
+        if (!d)
+            return -1;
+        v->d = d, v->cap = c;
+    }
+    v->d[v->n++] = x;
+    return 0;
+}
+static int zvec_push(zvec *v, size_t x)
+{
+    if (v->n == v->cap) {
+        const size_t c = v->cap ? 2 * v->cap : 64;
+        size_t *d = realloc(v->d, c * sizeof *d);
+        if (!d)
+            return -1;
+        v->d = d, v->cap = c;
+    }
+    v->d[v->n++] = x;
+    return 0;
+}
+
+/* Append polygon g (wkbPolygon) with value v */
+static int add_polygon(OGRGeometryH g, double v, zvec *ring0, zvec *pt0, dvec *xy, dvec *val, dvec *box)
+{
+    const int nr = OGR_G_GetGeometryCount(g);
+    if (nr < 1)
+        return 0; /* empty polygon: nothing */
+    if (zvec_push(ring0, pt0->n) || dvec_push(val, v))
+        return -1;
+    double b[4] = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (int r = 0; r < nr; ++r) {
+        OGRGeometryH ring = OGR_G_GetGeometryRef(g, r);
+        const int np = OGR_G_GetPointCount(ring);
+        if (zvec_push(pt0, xy->n / 2))
+            return -1;
+        for (int i = 0; i < np; ++i) {
+            const double x = OGR_G_GetX(ring, i), y = OGR_G_GetY(ring, i);
+            if (dvec_push(xy, x) || dvec_push(xy, y))
+                return -1;
+            if (r == 0) {
+                b[0] = fmin(b[0], x), b[1] = fmin(b[1], y);
+                b[2] = fmax(b[2], x), b[3] = fmax(b[3], y);
+            }
+        }
+    }
+    for (int i = 0; i < 4; ++i)
+        if (dvec_push(box, b[i]))
+            return -1;
+    return 0;
+}
+
+gf_status gf_polygons_read(const char *path, const char *attribute, double value, gf_polygons *p)
+{
+    if (!path || !p)
+        return gf_fail(GF_EINVAL, "gf_polygons_read: null argument");
+    memset(p, 0, sizeof *p);
+    gdal_init();
+    if (!attribute && !(isfinite(value) && value >= 0.0))
+        return gf_fail(GF_EDOM, "polygons %s: value %g must be finite and >= 0", path, value);
+    if (access(path, R_OK) != 0)
+        return gf_fail(GF_EIO, "polygons %s: no such file or not readable", path);
+    CPLErrorReset();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
+    CPLPopErrorHandler();
+    if (!ds)
+        return gf_fail(GF_EIO, "polygons %s: not a vector file OGR can read (%s)", path, gdal_msg());
+    gf_status st = GF_SUCCESS;
+    zvec ring0 = {0}, pt0 = {0};
+    dvec xy = {0}, val = {0}, box = {0};
+    OGRLayerH L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
+    if (!L) {
+        st = gf_fail(GF_EDOM, "polygons %s: no layer", path);
+        goto done;
+    }
+    OGRFeatureDefnH defn = OGR_L_GetLayerDefn(L);
+    int fi = -1;
+    if (attribute) {
+        fi = OGR_FD_GetFieldIndex(defn, attribute);
+        const OGRFieldType t = fi >= 0 ? OGR_Fld_GetType(OGR_FD_GetFieldDefn(defn, fi)) : OFTString;
+        if (fi < 0 || (t != OFTReal && t != OFTInteger && t != OFTInteger64)) {
+            char fields[256] = "";
+            for (int i = 0; i < OGR_FD_GetFieldCount(defn); ++i) {
+                const size_t l = strlen(fields);
+                snprintf(fields + l, sizeof fields - l, "%s%s", i ? ", " : "",
+                         OGR_Fld_GetNameRef(OGR_FD_GetFieldDefn(defn, i)));
+            }
+            st = gf_fail(GF_ENOTFOUND, "polygons %s: %s attribute '%s'; the numeric attributes"
+                                       " to choose from are among: %s", path,
+                         fi < 0 ? "no" : "non-numeric", attribute, fields[0] ? fields : "(none)");
+            goto done;
+        }
+    }
+    OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(L);
+    if (srs) {
+        char *w = NULL;
+        OSRExportToWkt(srs, &w);
+        p->wkt = dup_str(w);
+        CPLFree(w);
+    } else
+        p->wkt = dup_str("");
+    OGR_L_ResetReading(L);
+    OGRFeatureH f;
+    while ((f = OGR_L_GetNextFeature(L)) != NULL) {
+        const long fid = (long)OGR_F_GetFID(f);
+        double v = value;
+        if (fi >= 0) {
+            if (!OGR_F_IsFieldSetAndNotNull(f, fi)) {
+                st = gf_fail(GF_EDOM, "polygons %s: feature %ld has no %s value", path, fid, attribute);
+                OGR_F_Destroy(f);
+                goto done;
+            }
+            v = OGR_F_GetFieldAsDouble(f, fi);
+            if (!isfinite(v) || v < 0.0) {
+                st = gf_fail(GF_EDOM, "polygons %s: feature %ld has %s = %g; it must be finite"
+                                      " and >= 0", path, fid, attribute, v);
+                OGR_F_Destroy(f);
+                goto done;
+            }
+        }
+        OGRGeometryH g = OGR_F_GetGeometryRef(f);
+        const OGRwkbGeometryType t = g ? wkbFlatten(OGR_G_GetGeometryType(g)) : wkbNone;
+        int bad = 0;
+        if (t == wkbPolygon)
+            bad = add_polygon(g, v, &ring0, &pt0, &xy, &val, &box);
+        else if (t == wkbMultiPolygon) {
+            for (int k = 0; k < OGR_G_GetGeometryCount(g) && !bad; ++k)
+                bad = add_polygon(OGR_G_GetGeometryRef(g, k), v, &ring0, &pt0, &xy, &val, &box);
+        } else {
+            st = gf_fail(GF_EDOM, "polygons %s: feature %ld is a %s, not a polygon", path, fid,
+                         g ? OGRGeometryTypeToName(t) : "feature without geometry");
+            OGR_F_Destroy(f);
+            goto done;
+        }
+        OGR_F_Destroy(f);
+        if (bad) {
+            st = gf_fail(GF_ENOMEM, "polygons %s: out of memory", path);
+            goto done;
+        }
+    }
+    if (val.n == 0) {
+        st = gf_fail(GF_EDOM, "polygons %s: no polygon in its first layer", path);
+        goto done;
+    }
+    p->n = val.n;
+    if (zvec_push(&ring0, pt0.n) || zvec_push(&pt0, xy.n / 2)) {
+        st = gf_fail(GF_ENOMEM, "polygons %s: out of memory", path);
+        goto done;
+    }
+    p->ring0 = ring0.d, p->pt0 = pt0.d, p->xy = xy.d, p->value = val.d, p->box = box.d;
+    ring0.d = pt0.d = NULL, xy.d = val.d = box.d = NULL;
+done:
+    free(ring0.d), free(pt0.d), free(xy.d), free(val.d), free(box.d);
+    GDALClose(ds);
+    if (st)
+        gf_polygons_free(p);
+    return st;
+}
+
+void gf_polygons_free(gf_polygons *p)
+{
+    if (!p)
+        return;
+    free(p->ring0), free(p->pt0), free(p->xy), free(p->value), free(p->box), free(p->wkt);
+    memset(p, 0, sizeof *p);
+}
+
+/* even-odd crossing count of the rings of polygon k */
+static int inside(const gf_polygons *p, size_t k, double x, double y)
+{
+    const double *b = p->box + 4 * k;
+    if (x < b[0] || x > b[2] || y < b[1] || y > b[3])
+        return 0;
+    int in = 0;
+    for (size_t r = p->ring0[k]; r < p->ring0[k + 1]; ++r) {
+        const size_t a = p->pt0[r], e = p->pt0[r + 1];
+        for (size_t i = a, j = e - 1; i < e; j = i++) {
+            const double xi = p->xy[2 * i], yi = p->xy[2 * i + 1];
+            const double xj = p->xy[2 * j], yj = p->xy[2 * j + 1];
+            if ((yi > y) != (yj > y) && x < xj + (y - yj) * (xi - xj) / (yi - yj))
+                in = !in;
+        }
+    }
+    return in;
+}
+
+long gf_polygons_locate(const gf_polygons *p, double x, double y)
+{
+    for (size_t k = p->n; k-- > 0;)
+        if (inside(p, k, x, y))
+            return (long)k;
+    return -1;
+}
+
+double gf_polygons_area(const gf_polygons *p, size_t k)
+{
+    double area = 0.0;
+    for (size_t r = p->ring0[k]; r < p->ring0[k + 1]; ++r) {
+        const size_t a = p->pt0[r], e = p->pt0[r + 1];
+        double s = 0.0;
+        for (size_t i = a, j = e - 1; i < e; j = i++)
+            s += p->xy[2 * j] * p->xy[2 * i + 1] - p->xy[2 * i] * p->xy[2 * j + 1];
+        area += (r == p->ring0[k] ? 1.0 : -1.0) * fabs(0.5 * s);
+    }
+    return area;
+}
+
+/*------------------------------------------------------------ mesh grid --*/
+
+gf_status gf_terrain_grid_make(const gf_raster *dem, int k, const double *box,
+                               const gf_polygons *crop, gf_terrain_grid *g)
+{
+    if (!dem || !g || !dem->z)
+        return gf_fail(GF_EINVAL, "gf_terrain_grid_make: null argument");
+    memset(g, 0, sizeof *g);
+    const int kmax = (dem->nx < dem->ny ? dem->nx : dem->ny) - 1;
+    if (k < 1 || k > kmax)
+        return gf_fail(GF_EDOM, "coarsening %d is outside the allowed range [1, %d] for a %d x %d DEM",
+                       k, kmax, dem->nx, dem->ny);
+    if (box && !(box[0] < box[2] && box[1] < box[3]))
+        return gf_fail(GF_EDOM, "crop box (%g %g %g %g): needs xmin < xmax and ymin < ymax",
+                       box[0], box[1], box[2], box[3]);
+    const int ni = (dem->nx - 1) / k + 1, nj = (dem->ny - 1) / k + 1;
+    unsigned char *q = calloc((size_t)(ni - 1) * (size_t)(nj - 1), 1);
+    if (!q)
+        return gf_fail(GF_ENOMEM, "terrain grid: out of memory");
+    int imin = ni, imax = -1, jmin = nj, jmax = -1;
+    for (int J = 0; J + 1 < nj; ++J)
+        for (int I = 0; I + 1 < ni; ++I) {
+            const int c = I * k, r = J * k;
+            const double *z = dem->z;
+            const size_t nx = (size_t)dem->nx;
+            if (isnan(z[r * nx + c]) || isnan(z[r * nx + c + k]) || isnan(z[(r + k) * nx + c]) ||
+                isnan(z[(r + k) * nx + c + k]))
+                continue;
+            double x, y;
+            gf_raster_centre(dem, c + 0.5 * k, r + 0.5 * k, &x, &y);
+            if (box && (x < box[0] || x > box[2] || y < box[1] || y > box[3]))
+                continue;
+            if (crop && gf_polygons_locate(crop, x, y) < 0)
+                continue;
+            q[I + (size_t)(ni - 1) * J] = 1;
+            imin = I < imin ? I : imin, imax = I > imax ? I : imax;
+            jmin = J < jmin ? J : jmin, jmax = J > jmax ? J : jmax;
+        }
+    if (imax < 0) {
+        free(q);
+        return gf_fail(GF_EDOM, "terrain grid: no cell of the DEM is left (every cell touches"
+                                " NODATA or lies outside the crop)");
+    }
+    /* the bounding range of the faces */
+    g->k = k, g->c0 = imin * k, g->r0 = jmin * k;
+    g->ni = imax - imin + 2, g->nj = jmax - jmin + 2;
+    g->quad = calloc((size_t)(g->ni - 1) * (size_t)(g->nj - 1), 1);
+    if (!g->quad) {
+        free(q);
+        return gf_fail(GF_ENOMEM, "terrain grid: out of memory");
+    }
+    for (int J = jmin; J <= jmax; ++J)
+        for (int I = imin; I <= imax; ++I)
+            if (q[I + (size_t)(ni - 1) * J]) {
+                g->quad[(I - imin) + (size_t)(g->ni - 1) * (J - jmin)] = 1;
+                ++g->n_quads;
+            }
+    free(q);
+    return GF_SUCCESS;
+}
+
+void gf_terrain_grid_free(gf_terrain_grid *g)
+{
+    if (g) {
+        free(g->quad);
+        g->quad = NULL;
+    }
+}
+
+void gf_terrain_node(const gf_raster *dem, const gf_terrain_grid *g, int I, int J, double xyz[3])
+{
+    const int c = g->c0 + g->k * I, r = g->r0 + g->k * J;
+    gf_raster_centre(dem, c, r, xyz, xyz + 1);
+    xyz[2] = dem->z[(size_t)r * (size_t)dem->nx + (size_t)c];
+}
+
+gf_status gf_terrain_to_raster(const gf_raster *dem, const gf_terrain_grid *g, size_t n,
+                               const double *xy, const double *area, const double *val,
+                               double *out)
+{
+    const size_t nq = (size_t)(g->ni - 1) * (size_t)(g->nj - 1);
+    const size_t nn = (size_t)g->ni * (size_t)g->nj;
+    double *sum = calloc(2 * nn, sizeof(double));
+    unsigned char *seen = calloc(nq, 1);
+    gf_status st = GF_SUCCESS;
+    if (!sum || !seen) {
+        st = gf_fail(GF_ENOMEM, "terrain raster: out of memory");
+        goto done;
+    }
+    double *w = sum + nn;
+    const double k = g->k;
+    for (size_t f = 0; f < n; ++f) {
+        const double col = (xy[2 * f] - dem->gt[0]) / dem->gt[1] - 0.5;
+        const double row = (xy[2 * f + 1] - dem->gt[3]) / dem->gt[5] - 0.5;
+        const double fi = floor((col - g->c0) / k), fj = floor((row - g->r0) / k);
+        if (!(fi >= 0 && fi < g->ni - 1 && fj >= 0 && fj < g->nj - 1) ||
+            !g->quad[(size_t)fi + (size_t)(g->ni - 1) * (size_t)fj] ||
+            seen[(size_t)fi + (size_t)(g->ni - 1) * (size_t)fj]) {
+            st = gf_fail(GF_EDOM, "terrain raster: face %zu (centre %.3f %.3f) is not on a face of"
+                                  " the terrain grid, or shares it with another face: the mesh was"
+                                  " not made from this DEM with this coarsening and crop",
+                         f, xy[2 * f], xy[2 * f + 1]);
+            goto done;
+        }
+        const int I = (int)fi, J = (int)fj;
+        seen[I + (size_t)(g->ni - 1) * J] = 1;
+        if (!isfinite(val[f]) || !(area[f] > 0)) {
+            st = gf_fail(GF_ENONFINITE, "terrain raster: face %zu has value %g, area %g", f, val[f], area[f]);
+            goto done;
+        }
+        for (int b = 0; b < 4; ++b) {
+            const size_t node = (size_t)(I + (b & 1)) + (size_t)g->ni * (size_t)(J + (b >> 1));
+            sum[node] += area[f] * val[f];
+            w[node] += area[f];
+        }
+    }
+    for (size_t i = 0; i < nn; ++i)
+        sum[i] = w[i] > 0 ? sum[i] / w[i] : NAN;
+    for (int r = 0; r < dem->ny; ++r)
+        for (int c = 0; c < dem->nx; ++c) {
+            double v = NAN;
+            const double a = (c - g->c0) / k, b = (r - g->r0) / k;
+            const int I = (int)floor(a), J = (int)floor(b);
+            /* the quads that contain the pixel (two or four when it lies on a
+             * grid line): the first face among them */
+            for (int dj = 0; dj <= (b == J && J > 0) && isnan(v); ++dj)
+                for (int di = 0; di <= (a == I && I > 0) && isnan(v); ++di) {
+                    const int qi = I - di, qj = J - dj;
+                    if (qi < 0 || qj < 0 || qi >= g->ni - 1 || qj >= g->nj - 1 ||
+                        !seen[qi + (size_t)(g->ni - 1) * qj])
+                        continue;
+                    const double s = a - qi, t = b - qj;
+                    const double *v0 = sum + qi + (size_t)g->ni * qj;
+                    v = (1 - s) * (1 - t) * v0[0] + s * (1 - t) * v0[1] + (1 - s) * t * v0[g->ni] +
+                        s * t * v0[g->ni + 1];
+                }
+            /* a pixel on the mesh's last row or column of nodes */
+            if (isnan(v) && a == I && b == J && I >= 0 && J >= 0 && I < g->ni && J < g->nj)
+                v = sum[I + (size_t)g->ni * J];
+            out[(size_t)r * (size_t)dem->nx + (size_t)c] = v;
+        }
+done:
+    free(sum);
+    free(seen);
+    return st;
+}
+
+/*--------------------------------------------------------------- outline --*/
+
+gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
+                            double threshold, double *area)
+{
+    gdal_init();
+    if (!(isfinite(threshold) && threshold > 0))
+        return gf_fail(GF_EDOM, "outline %s: threshold %g must be finite and > 0", path, threshold);
+    const size_t n = (size_t)grid->nx * (size_t)grid->ny;
+    unsigned char *mask = malloc(n);
+    if (!mask)
+        return gf_fail(GF_ENOMEM, "outline %s: out of memory", path);
+    size_t count = 0;
+    for (size_t i = 0; i < n; ++i)
+        count += (mask[i] = isfinite(values[i]) && values[i] >= threshold);
+    if (area)
+        *area = (double)count * grid->gt[1] * -grid->gt[5];
+    gf_status st = GF_SUCCESS;
+    GDALDatasetH mem = mem_raster(grid, grid->nx, grid->ny, 1, GDT_Byte), vmem = NULL, out = NULL;
+    OGRSpatialReferenceH srs = NULL;
+    if (!mem) {
+        st = gf_fail(GF_EIO, "outline %s: %s", path, gdal_msg());
+        goto done;
+    }
+    GDALRasterBandH b = GDALGetRasterBand(mem, 1);
+    if (GDALRasterIO(b, GF_Write, 0, 0, grid->nx, grid->ny, mask, grid->nx, grid->ny, GDT_Byte, 0, 0)
+        != CE_None) {
+        st = gf_fail(GF_EIO, "outline %s: %s", path, gdal_msg());
+        goto done;
+    }
+    if (grid->wkt && *grid->wkt) {
+        srs = OSRNewSpatialReference(grid->wkt);
+        OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
+    }
+    GDALDriverH vdrv = GDALGetDriverByName("Memory"), gj = GDALGetDriverByName("GeoJSON");
+    vmem = vdrv ? GDALCreate(vdrv, "", 0, 0, 0, GDT_Unknown, NULL) : NULL;
+    if (!vmem || !gj) {
+        st = gf_fail(GF_EIO, "outline %s: GDAL lacks the Memory or GeoJSON driver", path);
+        goto done;
+    }
+    OGRLayerH ml = GDALDatasetCreateLayer(vmem, "mask", srs, wkbPolygon, NULL);
+    OGRFieldDefnH fd = OGR_Fld_Create("value", OFTInteger);
+    OGR_L_CreateField(ml, fd, TRUE);
+    OGR_Fld_Destroy(fd);
+    /* the mask band as its own mask: only the affected pixels become polygons */
+    if (GDALPolygonize(b, b, ml, 0, NULL, NULL, NULL) != CE_None) {
+        st = gf_fail(GF_EIO, "outline %s: polygonize failed (%s)", path, gdal_msg());
+        goto done;
+    }
+    unlink(path);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    out = GDALCreate(gj, path, 0, 0, 0, GDT_Unknown, NULL);
+    CPLPopErrorHandler();
+    if (!out) {
+        st = gf_fail(GF_EIO, "outline %s: GDAL cannot write it (%s)", path, gdal_msg());
+        goto done;
+    }
+    OGRLayerH ol = GDALDatasetCreateLayer(out, "affected_area", srs, wkbPolygon, NULL);
+    OGRFieldDefnH fa = OGR_Fld_Create("area_m2", OFTReal);
+    OGRFieldDefnH ft = OGR_Fld_Create("threshold", OFTReal);
+    OGR_L_CreateField(ol, fa, TRUE);
+    OGR_L_CreateField(ol, ft, TRUE);
+    OGR_Fld_Destroy(fa);
+    OGR_Fld_Destroy(ft);
+    OGR_L_ResetReading(ml);
+    OGRFeatureH f;
+    while ((f = OGR_L_GetNextFeature(ml)) != NULL) {
+        OGRFeatureH g = OGR_F_Create(OGR_L_GetLayerDefn(ol));
+        OGRGeometryH geom = OGR_F_GetGeometryRef(f);
+        OGR_F_SetGeometry(g, geom);
+        OGR_F_SetFieldDouble(g, 0, OGR_G_Area(geom));
+        OGR_F_SetFieldDouble(g, 1, threshold);
+        const OGRErr e = OGR_L_CreateFeature(ol, g);
+        OGR_F_Destroy(g);
+        OGR_F_Destroy(f);
+        if (e != OGRERR_NONE) {
+            st = gf_fail(GF_EIO, "outline %s: writing a polygon failed (%s)", path, gdal_msg());
+            goto done;
+        }
+    }
+done:
+    if (out)
+        GDALClose(out);
+    if (vmem)
+        GDALClose(vmem);
+    if (mem)
+        GDALClose(mem);
+    if (srs)
+        OSRDestroySpatialReference(srs);
+    free(mask);
+    return st;
+}
+
+/*------------------------------------------------------------------- map --*/
+
+static void ramp(double t, double rgb[3])
+{
+    static const double stop[4][3] = {{1.0, 1.0, 0.55}, {1.0, 0.7, 0.0}, {0.85, 0.1, 0.1}, {0.4, 0.0, 0.45}};
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    const double s = 3.0 * t;
+    const int i = s >= 3.0 ? 2 : (int)s;
+    const double u = s - i;
+    for (int c = 0; c < 3; ++c)
+        rgb[c] = (1 - u) * stop[i][c] + u * stop[i + 1][c];
+}
+
+gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *values,
+                        double vmin, double vmax)
+{
+    gdal_init();
+    if (!(vmax > vmin) || !isfinite(vmin) || !isfinite(vmax))
+        return gf_fail(GF_EDOM, "map %s: colour range [%g, %g] is empty or not finite", path, vmin, vmax);
+    const int nx = dem->nx, ny = dem->ny, bar = ny / 40 + 6, H = ny + bar;
+    const size_t np = (size_t)nx * (size_t)H;
+    unsigned char *img = malloc(3 * np);
+    if (!img)
+        return gf_fail(GF_ENOMEM, "map %s: out of memory", path);
+    const double d = dem->gt[1], deg = acos(-1.0) / 180.0;
+    const double alt = 45 * deg, az = 315 * deg;
+    const double L[3] = {cos(alt) * sin(az), cos(alt) * cos(az), sin(alt)};
+    const double *z = dem->z;
+    for (int r = 0; r < ny; ++r)
+        for (int c = 0; c < nx; ++c) {
+            const size_t i = (size_t)r * nx + c;
+            double rgb[3] = {1, 1, 1};
+            if (!isnan(z[i])) {
+                /* one-sided differences next to the edge or NODATA */
+                const int cl = c > 0 && !isnan(z[i - 1]) ? c - 1 : c, cr = c + 1 < nx && !isnan(z[i + 1]) ? c + 1 : c;
+                const int ru = r > 0 && !isnan(z[i - nx]) ? r - 1 : r, rd = r + 1 < ny && !isnan(z[i + nx]) ? r + 1 : r;
+                const double zx = cr > cl ? (z[(size_t)r * nx + cr] - z[(size_t)r * nx + cl]) / ((cr - cl) * d) : 0;
+                /* rows run southwards: north is towards smaller r */
+                const double zy = rd > ru ? (z[(size_t)ru * nx + c] - z[(size_t)rd * nx + c]) / ((rd - ru) * d) : 0;
+                const double nl = sqrt(zx * zx + zy * zy + 1);
+                double shade = (-zx * L[0] - zy * L[1] + L[2]) / nl;
+                shade = shade < 0 ? 0 : shade;
+                const double grey = 0.25 + 0.75 * shade;
+                rgb[0] = rgb[1] = rgb[2] = grey;
+                if (isfinite(values[i]) && values[i] >= vmin) {
+                    double col[3];
+                    ramp((values[i] - vmin) / (vmax - vmin), col);
+                    for (int k = 0; k < 3; ++k)
+                        rgb[k] = col[k] * (0.45 + 0.55 * shade);
+                }
+            }
+            for (int k = 0; k < 3; ++k)
+                img[k * np + i] = (unsigned char)lround(255 * rgb[k]);
+        }
+    for (int r = ny; r < H; ++r)
+        for (int c = 0; c < nx; ++c) {
+            double col[3] = {1, 1, 1};
+            if (r > ny + 1)
+                ramp((double)c / (nx - 1), col);
+            for (int k = 0; k < 3; ++k)
+                img[k * np + (size_t)r * nx + c] = (unsigned char)lround(255 * col[k]);
+        }
+    gf_status st = GF_SUCCESS;
+    GDALDatasetH mem = mem_raster(NULL, nx, H, 3, GDT_Byte), out = NULL;
+    GDALDriverH png = GDALGetDriverByName("PNG");
+    if (!mem || !png) {
+        st = gf_fail(GF_EIO, "map %s: GDAL lacks the MEM or PNG driver", path);
+        goto done;
+    }
+    if (GDALDatasetRasterIO(mem, GF_Write, 0, 0, nx, H, img, nx, H, GDT_Byte, 3, NULL, 0, 0, 0) != CE_None) {
+        st = gf_fail(GF_EIO, "map %s: %s", path, gdal_msg());
+        goto done;
+    }
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    out = GDALCreateCopy(png, path, mem, FALSE, NULL, NULL, NULL);
+    CPLPopErrorHandler();
+    if (!out)
+        st = gf_fail(GF_EIO, "map %s: GDAL cannot write it (%s)", path, gdal_msg());
+done:
+    if (out)
+        GDALClose(out);
+    if (mem)
+        GDALClose(mem);
+    free(img);
+    return st;
+}

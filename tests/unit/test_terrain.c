@@ -1,0 +1,375 @@
+/* libgranflowTerrain: DEMs, polygons, the mesh grid, rasters on the DEM's
+ * grid (granflow/terrain.h).  The avaHelix DEM and release polygon come from
+ * tutorials/avaHelix/Inputs (AvaFrame test data); the small cases are written
+ * here. */
+#include "../gf_test.h"
+
+#include "granflow/terrain.h"
+
+#include <gdal.h>
+#include <ogr_api.h>
+#include <cpl_conv.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#ifndef GF_SOURCE_DIR
+#error "GF_SOURCE_DIR must point at the granflow checkout"
+#endif
+#define HELIX GF_SOURCE_DIR "/tutorials/avaHelix/Inputs/DEM_HX_Topo.asc"
+#define HELIX_REL GF_SOURCE_DIR "/tutorials/avaHelix/Inputs/REL/release1HX.shp"
+
+static char tmpdir[64];
+
+static const char *tmp(const char *name)
+{
+    static char path[4][160];
+    static int k = 0;
+    k = (k + 1) % 4;
+    snprintf(path[k], sizeof path[k], "%s/%s", tmpdir, name);
+    return path[k];
+}
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/gf_terrain_XXXXXX");
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+    return system(cmd);
+}
+
+/* the avaHelix DEM as GDAL reports it: 1001 x 401 pixels of 5 m, lower-left
+ * pixel centre (1000, -5000), no NODATA */
+static void helix_dem_is_read_with_its_georeferencing(void **state)
+{
+    (void)state;
+    gf_raster r;
+    assert_int_equal(gf_raster_read(HELIX, &r), GF_SUCCESS);
+    assert_int_equal(r.nx, 1001);
+    assert_int_equal(r.ny, 401);
+    assert_close(r.gt[1], 5.0, 0);
+    assert_close(r.gt[5], -5.0, 0);
+    double x, y;
+    gf_raster_centre(&r, 0, r.ny - 1, &x, &y);
+    assert_close(x, 1000.0, 1e-9);
+    assert_close(y, -5000.0, 1e-9);
+    assert_int_equal(r.n_valid, (size_t)1001 * 401);
+    gf_raster_free(&r);
+}
+
+/* A 6 x 5 DEM with one NODATA pixel, written as ESRI ASCII */
+static const char *small_dem(void)
+{
+    const char *p = tmp("small.asc");
+    write_text(p, "ncols 6\nnrows 5\nxllcorner 100\nyllcorner 200\ncellsize 10\nNODATA_value -9999\n"
+                  "1 2 3 4 5 6\n"
+                  "2 3 4 5 6 7\n"
+                  "3 4 -9999 6 7 8\n"
+                  "4 5 6 7 8 9\n"
+                  "5 6 7 8 9 10\n");
+    return p;
+}
+
+static void rasters_round_trip_with_the_dem_header(void **state)
+{
+    (void)state;
+    gf_raster dem;
+    assert_int_equal(gf_raster_read(small_dem(), &dem), GF_SUCCESS);
+    assert_int_equal(dem.n_valid, 29);
+    assert_true(isnan(dem.z[2 * 6 + 2]));
+    double v[30];
+    for (int i = 0; i < 30; ++i)
+        v[i] = i == 7 ? NAN : 0.1 * i + 1.0 / 3.0;
+    const char *drivers[2] = {"AAIGrid", "GTiff"}, *names[2] = {"v.asc", "v.tif"};
+    for (int d = 0; d < 2; ++d) {
+        assert_int_equal(gf_raster_write(tmp(names[d]), drivers[d], &dem, v), GF_SUCCESS);
+        gf_raster back;
+        assert_int_equal(gf_raster_read(tmp(names[d]), &back), GF_SUCCESS);
+        assert_int_equal(back.nx, 6);
+        assert_int_equal(back.ny, 5);
+        for (int k = 0; k < 6; ++k)
+            assert_close(back.gt[k], dem.gt[k], 1e-9);
+        assert_close(back.nodata, -9999, 0);
+        for (int i = 0; i < 30; ++i) {
+            if (i == 7)
+                assert_true(isnan(back.z[i]));
+            else
+                assert_close(back.z[i], v[i], d == 0 ? 1e-7 * fabs(v[i]) : 0); /* GDAL reads ESRI ASCII as float32 */
+        }
+        gf_raster_free(&back);
+    }
+    assert_int_equal(gf_raster_write(tmp("v.png"), "PNG", &dem, v), GF_ENOTFOUND);
+    gf_raster_free(&dem);
+}
+
+static void expect_refused(const char *path, gf_status want, const char *reason)
+{
+    gf_raster r;
+    assert_int_equal(gf_raster_read(path, &r), want);
+    const char *d = gf_error_detail();
+    if (!strstr(d, path) || !strstr(d, reason))
+        fail_msg("detail '%s' lacks the file %s or '%s'", d, path, reason);
+    assert_null(r.z);
+}
+
+/* a missing file, a raster without georeferencing (a PGM image), mixed cell
+ * sizes (ESRI's dx/dy header), only NODATA: refused naming the file */
+static void bad_rasters_are_refused_naming_the_file(void **state)
+{
+    (void)state;
+    expect_refused(tmp("missing.asc"), GF_EIO, "no such file");
+    const char *pgm = tmp("image.pgm");
+    FILE *f = fopen(pgm, "wb");
+    assert_non_null(f);
+    fputs("P5\n3 3\n255\n", f);
+    fwrite("abcdefghi", 1, 9, f);
+    fclose(f);
+    expect_refused(pgm, GF_EDOM, "no georeferencing");
+    const char *mixed = tmp("mixed.asc");
+    write_text(mixed, "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ndx 5\ndy 10\nNODATA_value -9999\n1 2\n3 4\n");
+    expect_refused(mixed, GF_EDOM, "mixed cell sizes");
+    const char *empty = tmp("empty.asc");
+    write_text(empty, "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 5\nNODATA_value -9999\n"
+                      "-9999 -9999\n-9999 -9999\n");
+    expect_refused(empty, GF_EDOM, "every cell is NODATA");
+    const char *text = tmp("notes.txt");
+    write_text(text, "not a raster\n");
+    expect_refused(text, GF_EIO, "not a raster");
+}
+
+/* A GeoJSON with a 10 x 10 square with a 2 x 2 hole (value 1.5) and a
+ * multipolygon of two unit squares (value 0.5) that overlaps the first */
+static const char *geojson(const char *extra_props)
+{
+    static char text[1024];
+    snprintf(text, sizeof text,
+             "{\"type\":\"FeatureCollection\",\"features\":["
+             "{\"type\":\"Feature\",\"properties\":{\"thickness\":1.5%s},\"geometry\":{\"type\":\"Polygon\","
+             "\"coordinates\":[[[0,0],[10,0],[10,10],[0,10],[0,0]],[[4,4],[6,4],[6,6],[4,6],[4,4]]]}},"
+             "{\"type\":\"Feature\",\"properties\":{\"thickness\":0.5},\"geometry\":{\"type\":\"MultiPolygon\","
+             "\"coordinates\":[[[[9,9],[11,9],[11,11],[9,11],[9,9]]],[[[20,0],[21,0],[21,1],[20,1],[20,0]]]]}}]}",
+             extra_props);
+    const char *p = tmp("rel.geojson");
+    write_text(p, text);
+    return p;
+}
+
+static void release_polygons_with_holes_parts_and_attributes(void **state)
+{
+    (void)state;
+    gf_polygons p;
+    assert_int_equal(gf_polygons_read(geojson(""), "thickness", 0, &p), GF_SUCCESS);
+    assert_int_equal(p.n, 3);
+    assert_close(gf_polygons_area(&p, 0), 96.0, 1e-12);
+    assert_close(gf_polygons_area(&p, 1), 4.0, 1e-12);
+    assert_close(gf_polygons_area(&p, 2), 1.0, 1e-12);
+    assert_close(p.value[0], 1.5, 0);
+    assert_close(p.value[1], 0.5, 0);
+    assert_int_equal(gf_polygons_locate(&p, 2, 2), 0);
+    assert_int_equal(gf_polygons_locate(&p, 5, 5), -1); /* the hole */
+    assert_int_equal(gf_polygons_locate(&p, 9.5, 9.5), 1); /* the later one wins */
+    assert_int_equal(gf_polygons_locate(&p, 20.5, 0.5), 2);
+    assert_int_equal(gf_polygons_locate(&p, 15, 5), -1);
+    gf_polygons_free(&p);
+    /* a given value instead of an attribute */
+    assert_int_equal(gf_polygons_read(geojson(""), NULL, 2.0, &p), GF_SUCCESS);
+    assert_close(p.value[0], 2.0, 0);
+    gf_polygons_free(&p);
+    /* the shapefile of the avaHelix release: one polygon, thickness 1 m */
+    assert_int_equal(gf_polygons_read(HELIX_REL, "thickness", 0, &p), GF_SUCCESS);
+    assert_int_equal(p.n, 1);
+    assert_close(p.value[0], 1.0, 0);
+    assert_true(strstr(p.wkt, "Austria Lambert") != NULL);
+    assert_true(gf_polygons_area(&p, 0) > 3e4 && gf_polygons_area(&p, 0) < 8e4);
+    gf_polygons_free(&p);
+}
+
+static void bad_polygons_are_refused_naming_file_and_attribute(void **state)
+{
+    (void)state;
+    gf_polygons p;
+    assert_int_equal(gf_polygons_read(geojson(""), "depth", 0, &p), GF_ENOTFOUND);
+    assert_true(strstr(gf_error_detail(), "depth") && strstr(gf_error_detail(), "thickness"));
+    assert_int_equal(gf_polygons_read(geojson(",\"name\":\"a\""), "name", 0, &p), GF_ENOTFOUND);
+    assert_true(strstr(gf_error_detail(), "non-numeric") != NULL);
+    const char *neg = tmp("neg.geojson");
+    write_text(neg, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":"
+                    "{\"thickness\":-1},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":"
+                    "[[[0,0],[1,0],[1,1],[0,0]]]}}]}");
+    assert_int_equal(gf_polygons_read(neg, "thickness", 0, &p), GF_EDOM);
+    assert_true(strstr(gf_error_detail(), neg) && strstr(gf_error_detail(), "-1"));
+    const char *pt = tmp("point.geojson");
+    write_text(pt, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":"
+                   "{\"thickness\":1},\"geometry\":{\"type\":\"Point\",\"coordinates\":[0,0]}}]}");
+    assert_int_equal(gf_polygons_read(pt, "thickness", 0, &p), GF_EDOM);
+    assert_true(strstr(gf_error_detail(), "not a polygon") != NULL);
+    assert_int_equal(gf_polygons_read(tmp("none.shp"), "thickness", 0, &p), GF_EIO);
+    assert_true(strstr(gf_error_detail(), "none.shp") != NULL);
+    assert_int_equal(gf_polygons_read(geojson(""), NULL, -1.0, &p), GF_EDOM);
+}
+
+/* faces are the quads of four valid nodes: 5 x 4 quads of the small DEM
+ * minus the 4 around its NODATA pixel; coarsening 2 and a crop box */
+static void mesh_grid_skips_nodata_and_follows_the_crop(void **state)
+{
+    (void)state;
+    gf_raster dem;
+    assert_int_equal(gf_raster_read(small_dem(), &dem), GF_SUCCESS);
+    gf_terrain_grid g;
+    assert_int_equal(gf_terrain_grid_make(&dem, 1, NULL, NULL, &g), GF_SUCCESS);
+    assert_int_equal(g.n_quads, 16);
+    assert_int_equal(g.ni, 6);
+    assert_int_equal(g.nj, 5);
+    double xyz[3];
+    gf_terrain_node(&dem, &g, 0, 4, xyz); /* lower-left pixel centre */
+    assert_close(xyz[0], 105, 1e-12);
+    assert_close(xyz[1], 205, 1e-12);
+    assert_close(xyz[2], 5, 0);
+    gf_terrain_grid_free(&g);
+    /* k = 2: nodes at columns 0, 2, 4 and rows 0, 2, 4; all four quads
+     * have the NODATA pixel (2, 2) as a corner: no face is left */
+    assert_int_equal(gf_terrain_grid_make(&dem, 2, NULL, NULL, &g), GF_EDOM);
+    assert_true(strstr(gf_error_detail(), "no cell") != NULL);
+    const double box[4] = {100, 200, 128, 250}; /* quad centres with x <= 128 */
+    assert_int_equal(gf_terrain_grid_make(&dem, 1, box, NULL, &g), GF_SUCCESS);
+    assert_int_equal(g.n_quads, 2 * 4 - 2);
+    assert_int_equal(g.c0, 0);
+    gf_terrain_grid_free(&g);
+    const double nobox[4] = {0, 0, 10, 10};
+    assert_int_equal(gf_terrain_grid_make(&dem, 1, nobox, NULL, &g), GF_EDOM);
+    assert_int_equal(gf_terrain_grid_make(&dem, 5, NULL, NULL, &g), GF_EDOM);
+    gf_raster_free(&dem);
+}
+
+/* Face values of a linear field a + b x + c y, mapped onto the DEM's pixels:
+ * exact at interior nodes (the mean of four symmetric faces) and, with
+ * coarsening, bilinear in between; NAN off the mesh */
+static void face_values_map_onto_the_dem_grid(void **state)
+{
+    (void)state;
+    const int nx = 9, ny = 7;
+    gf_raster dem = {.nx = nx, .ny = ny, .gt = {1000, 5, 0, 2000, 0, -5}, .nodata = -9999, .wkt = ""};
+    double z[63];
+    dem.z = z;
+    for (int i = 0; i < nx * ny; ++i)
+        z[i] = 0.1 * i;
+    z[0] = NAN; /* the north-west corner */
+    for (int k = 1; k <= 2; ++k) {
+        gf_terrain_grid g;
+        assert_int_equal(gf_terrain_grid_make(&dem, k, NULL, NULL, &g), GF_SUCCESS);
+        assert_int_equal(g.n_quads, (size_t)((nx - 1) / k) * ((ny - 1) / k) - 1);
+        double xy[96], area[48], val[48], out[63];
+        size_t n = 0;
+        for (int J = 0; J + 1 < g.nj; ++J)
+            for (int I = 0; I + 1 < g.ni; ++I)
+                if (g.quad[I + (g.ni - 1) * J]) {
+                    double a[3], b[3];
+                    gf_terrain_node(&dem, &g, I, J, a);
+                    gf_terrain_node(&dem, &g, I + 1, J + 1, b);
+                    xy[2 * n] = 0.5 * (a[0] + b[0]), xy[2 * n + 1] = 0.5 * (a[1] + b[1]);
+                    area[n] = 25.0 * k * k;
+                    val[n] = 3 + 0.5 * xy[2 * n] - 0.25 * xy[2 * n + 1];
+                    ++n;
+                }
+        assert_int_equal(n, g.n_quads);
+        assert_int_equal(gf_terrain_to_raster(&dem, &g, n, xy, area, val, out), GF_SUCCESS);
+        for (int r = 0; r < ny; ++r)
+            for (int c = 0; c < nx; ++c) {
+                double x, y;
+                gf_raster_centre(&dem, c, r, &x, &y);
+                const double v = out[r * nx + c];
+                /* the nodes on the mesh's boundary average fewer faces:
+                 * exact in the quads of interior nodes only */
+                const int on_edge = c < k || r < k || c > nx - 1 - k || r > ny - 1 - k;
+                const int by_hole = c <= 2 * k && r <= 2 * k;
+                if (c < k && r < k) /* inside the quad left out */
+                    assert_true(isnan(v));
+                else if (!on_edge && !by_hole)
+                    assert_close(v, 3 + 0.5 * x - 0.25 * y, 1e-9);
+                else
+                    assert_true(isfinite(v));
+            }
+        /* a face that is not on the grid is refused */
+        xy[0] = 0;
+        assert_int_equal(gf_terrain_to_raster(&dem, &g, n, xy, area, val, out), GF_EDOM);
+        gf_terrain_grid_free(&g);
+    }
+}
+
+/* The affected-area outline: pixels >= threshold, their area, the GeoJSON
+ * polygons' areas summing to it; the PNG map has the DEM's size plus the
+ * colour bar */
+static void outline_and_map_are_written(void **state)
+{
+    (void)state;
+    gf_raster dem;
+    assert_int_equal(gf_raster_read(small_dem(), &dem), GF_SUCCESS);
+    double v[30];
+    size_t count = 0;
+    for (int i = 0; i < 30; ++i) {
+        v[i] = (i % 6 >= 3 && i / 6 >= 1) ? 0.5 + 0.01 * i : 0.0;
+        count += v[i] >= 0.1;
+    }
+    v[0] = 0.2; /* a separate patch */
+    double area;
+    assert_int_equal(gf_raster_outline(tmp("outline.geojson"), &dem, v, 0.1, &area), GF_SUCCESS);
+    assert_close(area, (count + 1) * 100.0, 1e-9);
+    GDALDatasetH ds = GDALOpenEx(tmp("outline.geojson"), GDAL_OF_VECTOR, NULL, NULL, NULL);
+    assert_non_null(ds);
+    OGRLayerH L = GDALDatasetGetLayer(ds, 0);
+    double sum = 0;
+    int nf = 0;
+    OGRFeatureH f;
+    while ((f = OGR_L_GetNextFeature(L)) != NULL) {
+        sum += OGR_F_GetFieldAsDouble(f, OGR_F_GetFieldIndex(f, "area_m2"));
+        ++nf;
+        OGR_F_Destroy(f);
+    }
+    GDALClose(ds);
+    assert_int_equal(nf, 2);
+    assert_close(sum, area, 1e-9);
+    assert_int_equal(gf_raster_png(tmp("map.png"), &dem, v, 0.1, 1.0), GF_SUCCESS);
+    ds = GDALOpen(tmp("map.png"), GA_ReadOnly);
+    assert_non_null(ds);
+    assert_int_equal(GDALGetRasterCount(ds), 3);
+    assert_int_equal(GDALGetRasterXSize(ds), 6);
+    assert_true(GDALGetRasterYSize(ds) > 5);
+    GDALClose(ds);
+    assert_int_equal(gf_raster_png(tmp("map2.png"), &dem, v, 1.0, 1.0), GF_EDOM);
+    gf_raster_free(&dem);
+}
+
+int main(void)
+{
+    CPLSetConfigOption("CPL_LOG", "/dev/null");
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(helix_dem_is_read_with_its_georeferencing),
+        cmocka_unit_test(rasters_round_trip_with_the_dem_header),
+        cmocka_unit_test(bad_rasters_are_refused_naming_the_file),
+        cmocka_unit_test(release_polygons_with_holes_parts_and_attributes),
+        cmocka_unit_test(bad_polygons_are_refused_naming_file_and_attribute),
+        cmocka_unit_test(mesh_grid_skips_nodata_and_follows_the_crop),
+        cmocka_unit_test(face_values_map_onto_the_dem_grid),
+        cmocka_unit_test(outline_and_map_are_written),
+    };
+    const int rc = cmocka_run_group_tests(tests, setup, teardown);
+    GDALDestroyDriverManager();
+    return rc;
+}
