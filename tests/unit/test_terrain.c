@@ -197,6 +197,16 @@ static void release_polygons_with_holes_parts_and_attributes(void **state)
     assert_int_equal(p.n, 1);
     assert_close(p.value[0], 1.0, 0);
     assert_true(strstr(p.wkt, "Austria Lambert") != NULL);
+    assert_int_equal(gf_crs_same(p.wkt, p.wkt), 1);
+    assert_int_equal(gf_crs_same(p.wkt, ""), -1);
+    {
+        gf_polygons kot;
+        assert_int_equal(gf_polygons_read(GF_SOURCE_DIR "/tutorials/avaKot/Inputs/REL/relKot.shp",
+                                          "thickness", 0, &kot), GF_SUCCESS);
+        /* both MGI / Austria Lambert */
+        assert_int_equal(gf_crs_same(p.wkt, kot.wkt), 1);
+        gf_polygons_free(&kot);
+    }
     assert_true(gf_polygons_area(&p, 0) > 3e4 && gf_polygons_area(&p, 0) < 8e4);
     gf_polygons_free(&p);
 }

@@ -131,6 +131,55 @@ static void mass_conserved_in_a_closed_box(void **state)
     free(h);
 }
 
+/* Peak fields (hazard maps) follow every step: after a sliding pile (35 deg,
+ * bed friction 20 deg) has moved, h_peak and speed_peak of every face equal
+ * the maxima of h and |u| over all steps found by scanning every face, and
+ * the faces the pile never reached keep 0. */
+static void peak_fields_are_the_maxima_over_all_steps(void **state)
+{
+    (void)state;
+    double zeta = 35 * GF_DEG;
+    strip_mesh *sm = strip_mesh_new(80, 30, 0, 20, -3.75, 3.75, const_zeta, &zeta, WALLS);
+    gf_surface_config c;
+    gf_surface_config_default(&c);
+    coulomb(&c, 20);
+    gf_surface *s = make_solver(sm, &c);
+    const size_t nf = sm->m.n_faces;
+    double *h = paraboloid(sm, 4.0, 0.5);
+    assert_int_equal(gf_surface_set_state(s, h, NULL), GF_SUCCESS);
+    double *hp = calloc(nf, sizeof *hp), *up = calloc(nf, sizeof *up);
+    double *hs = calloc(nf, sizeof *hs), *us = calloc(nf, sizeof *us);
+    memcpy(hp, h, nf * sizeof *h);
+    memcpy(hs, h, nf * sizeof *h);
+    for (int n = 0; n < 300; ++n) {
+        double dt;
+        assert_int_equal(gf_surface_max_dt(s, &dt), GF_SUCCESS);
+        assert_int_equal(gf_surface_step(s, dt), GF_SUCCESS);
+        gf_surface_update_peaks(s, hp, up);
+        const double *hn = gf_surface_h(s), *m = gf_surface_momentum(s);
+        for (size_t f = 0; f < nf; ++f) {
+            hs[f] = fmax(hs[f], hn[f]);
+            if (hn[f] > c.h_dry)
+                us[f] = fmax(us[f], sqrt(m[3 * f] * m[3 * f] + m[3 * f + 1] * m[3 * f + 1] +
+                                         m[3 * f + 2] * m[3 * f + 2]) / hn[f]);
+        }
+    }
+    size_t reached = 0;
+    double umax = 0;
+    for (size_t f = 0; f < nf; ++f) {
+        assert_close(hp[f], hs[f], 0);
+        assert_close(up[f], us[f], 1e-15 * (1 + us[f])); /* m/h against m (1/h) */
+        reached += hp[f] > 0;
+        umax = fmax(umax, up[f]);
+    }
+    printf("  peaks: %zu of %zu faces reached, peak speed %.3f m/s\n", reached, nf, umax);
+    assert_true(reached > 0 && reached < nf);
+    assert_true(umax > 1.0);
+    gf_surface_free(s);
+    strip_mesh_free(sm);
+    free(h), free(hp), free(up), free(hs), free(us);
+}
+
 /* Dam breaks on a dry bed along a strip (walls at the sides): frictionless
  * Ritter (g = 1, h0 = 1, dam at x = 6) and Coulomb on a 35 deg incline with
  * bed friction 30 deg (the reservoir enters at u = a t through the inflow
@@ -234,6 +283,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(pile_at_rest_on_plane_and_curved_bed),
         cmocka_unit_test(mass_conserved_in_a_closed_box),
+        cmocka_unit_test(peak_fields_are_the_maxima_over_all_steps),
         cmocka_unit_test(dry_fronts_against_exact),
     };
     return cmocka_run_group_tests_name("surface_verification", tests, NULL, NULL);

@@ -41,6 +41,7 @@ Usage
 #include "fixFacesAtRest.H"
 #include "granularBoundaries.H"
 #include "explicitSurfaceScheme.H"
+#include "peakFields.H"
 #include "cpuSections.H"
 
 #include "keepFreedMemory.H"
@@ -64,6 +65,8 @@ int main(int argc, char *argv[])
     // it restarts (granularBoundaries.H)
     const scalar mass0 = boundaries.initialVolume(gSum(h.primitiveField()*aMesh.S().field()));
     Info<< "Initial mass (volume) " << mass0 << " m3" << nl << endl;
+    granflow::peakFields peaks(mesh, aMesh);   // controlDict peakFields yes (peakFields.H)
+    peaks.update(h, Us);
     if (explicitScheme)
     {
         #include "explicitLoop.H"

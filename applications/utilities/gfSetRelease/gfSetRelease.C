@@ -22,6 +22,14 @@ Description
             // any Function1 (table, polynomial, sine, ...) of one coordinate
             // x, y, z, or distance (from 'origin')
             function { coordinate x; h table ((0 0.5) (5 0.5) (5 0.1) (10 0.1)); }
+            // release polygons of a real terrain (shapefile, GeoJSON, ... read
+            // by OGR; a case meshed by gfTerrainMesh, whose offset maps the
+            // polygons' georeferenced coordinates onto the mesh): faces whose
+            // centre lies inside a polygon get its thickness, from a numeric
+            // attribute or a value, measured normal to the terrain (h = d)
+            // or vertically (h = d cos(slope), the same volume per plan area)
+            polygons { file "Inputs/REL/release.shp"; attribute thickness; measured normal; }
+            polygons { file "Inputs/REL/release.geojson"; value 1.5; measured vertical; }
         );
 
     Later regions override earlier ones where they give a value; a
@@ -33,6 +41,8 @@ Description
 #include "fvCFD.H"
 #include "faCFD.H"
 #include "Function1.H"
+
+#include "terrainCase.H"
 
 int main(int argc, char *argv[])
 {
@@ -167,11 +177,90 @@ int main(int argc, char *argv[])
                 ++nSet;
             }
         }
+        else if (type == "polygons")
+        {
+            for (const word& k : r.toc())
+            {
+                if (k != "file" && k != "attribute" && k != "value" && k != "measured")
+                {
+                    FatalIOErrorInFunction(r)
+                        << "Unknown entry " << k << " of region polygons; valid entries: file,"
+                        << " attribute or value, measured" << exit(FatalIOError);
+                }
+            }
+            if (r.found("attribute") == r.found("value"))
+            {
+                FatalIOErrorInFunction(r)
+                    << "region polygons needs exactly one of attribute (a numeric field of the"
+                    << " polygons) and value (a thickness for all) [m]" << exit(FatalIOError);
+            }
+            const word measured = r.getOrDefault<word>("measured", "normal");
+            if (measured != "normal" && measured != "vertical")
+            {
+                FatalIOErrorInFunction(r)
+                    << "Invalid entry measured " << measured << " of region polygons: allowed"
+                    << " normal (thickness along the terrain normal) or vertical" << exit(FatalIOError);
+            }
+            IOobject tio("terrainProperties", runTime.constant(), mesh, IOobject::MUST_READ);
+            if (!tio.typeHeaderOk<IOdictionary>(false))
+            {
+                FatalIOErrorInFunction(r)
+                    << "region polygons needs constant/terrainProperties (written by"
+                    << " gfTerrainMesh) for the offset between the polygons' georeferenced"
+                    << " coordinates and the mesh" << exit(FatalIOError);
+            }
+            const IOdictionary terrain(tio);
+            const vector offset = terrain.get<vector>("offset");
+            const fileName file = r.get<fileName>("file");
+            const fileName path = granflow::terrainCase::inCase(file, runTime.path());
+            const std::string attr = r.found("attribute") ? r.get<word>("attribute") : word();
+            const scalar value = r.getOrDefault<scalar>("value", 0);
+            gf_polygons P;
+            granflow::terrainCase::check
+            (
+                r, "file", gf_polygons_read(path.c_str(), attr.empty() ? nullptr : attr.c_str(), value, &P)
+            );
+            const string demCrs = terrain.getOrDefault<string>("crs", "");
+            if (gf_crs_same(P.wkt, demCrs.c_str()) == 0)
+            {
+                gf_polygons_free(&P);
+                FatalIOErrorInFunction(r)
+                    << "polygons " << path << " are in another coordinate reference system than"
+                    << " the DEM (constant/terrainProperties crs); reproject them (ogr2ogr -t_srs)"
+                    << exit(FatalIOError);
+            }
+            scalarField vol(P.n, 0), area(P.n, 0);
+            labelList nIn(P.n, 0);
+            const scalarField& S = aMesh.S().field();
+            forAll(C, i)
+            {
+                const long k = gf_polygons_locate(&P, C[i].x() + offset.x(), C[i].y() + offset.y());
+                if (k < 0) continue;
+                // vertical thickness d over a face of slope theta: h = d cos(theta)
+                const scalar hk = measured == "normal" ? P.value[k] : P.value[k]*mag(N[i].z());
+                hNew[i] = hk;
+                vol[k] += hk*S[i];
+                area[k] += S[i];
+                ++nIn[k];
+                ++nSet;
+            }
+            Pstream::listCombineGather(vol, plusEqOp<scalar>());
+            Pstream::listCombineGather(area, plusEqOp<scalar>());
+            Pstream::listCombineGather(nIn, plusEqOp<label>());
+            for (size_t k = 0; k < P.n; ++k)
+            {
+                Info<< "    polygon " << label(k) << " of " << file << ": thickness " << P.value[k]
+                    << " m (" << measured << "), plan area " << gf_polygons_area(&P, k)
+                    << " m2; " << nIn[k] << " faces, terrain area " << area[k]
+                    << " m2, released volume " << vol[k] << " m3" << endl;
+            }
+            gf_polygons_free(&P);
+        }
         else
         {
             FatalIOErrorInFunction(dict)
                 << "Unknown region type " << type
-                << "; valid types: sphericalCap, cylindricalCap, box, cylinder, function"
+                << "; valid types: sphericalCap, cylindricalCap, box, cylinder, function, polygons"
                 << exit(FatalIOError);
         }
         Info<< "    " << type << ": " << returnReduce(nSet, sumOp<label>()) << " faces" << endl;

@@ -62,6 +62,11 @@ double gf_sh_static_source(double g, double zeta, double mu, double beta_dhdx);
  * Definition 1 / eq. 22), 0 otherwise. */
 int gf_sh_admissible(double g, double zeta, double mu, double beta_dhdx);
 
+/* Dynamic (impact) pressure rho u^2 [Pa] of a flow of density rho [kg/m3]
+ * at speed u [m/s]: the peak-pressure field of hazard maps (AvaFrame's
+ * "ppr", there in kPa). */
+double gf_dynamic_pressure(double rho, double u);
+
 #ifdef __cplusplus
 }
 #endif

@@ -151,6 +151,13 @@ const double *gf_surface_pb(const gf_surface *s);       /* [n_faces] basal press
  * the owner's side; meaningful for boundary edges. */
 const double *gf_surface_edge_volume(const gf_surface *s);
 
+/* Peak fields over time, for hazard maps: h_peak[f] = max(h_peak[f], h_f)
+ * and speed_peak[f] = max(speed_peak[f], |u_f|) over the owned faces of the
+ * last step's active set (every face that is or was wet in it; the others
+ * have h = 0 and cannot raise a peak).  Caller-owned arrays [n_faces];
+ * call after each gf_surface_step. */
+void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_peak);
+
 /* Volume sum_f A_f h_f of the owned faces. */
 double gf_surface_volume(const gf_surface *s);
 

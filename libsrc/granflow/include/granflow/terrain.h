@@ -86,6 +86,10 @@ long gf_polygons_locate(const gf_polygons *p, double x, double y);
 /* Plane area of polygon k (exterior minus holes, shoelace formula). */
 double gf_polygons_area(const gf_polygons *p, size_t k);
 
+/* Do two CRS (WKT) describe the same coordinate system?  1 yes, 0 no, -1
+ * when either is empty or not understood (nothing to compare). */
+int gf_crs_same(const char *wkt_a, const char *wkt_b);
+
 /* The node grid of an area mesh on a DEM (see the top of this file). */
 typedef struct gf_terrain_grid {
     int c0, r0, k;        /* pixel of node (0, 0), coarsening */
@@ -120,7 +124,8 @@ gf_status gf_raster_outline(const char *path, const gf_raster *grid, const doubl
                             double threshold, double *area);
 
 /* PNG map: the hillshade of dem (sun from the north-west, 45 deg high)
- * tinted by values where values >= vmin, colours from vmin to vmax on a
+ * with contour lines (about ten over the elevation range, every 1, 2 or 5 x
+ * 10^n m) tinted by values where values >= vmin, colours from vmin to vmax on a
  * white-yellow-red-purple scale, a scale bar of that colour ramp along the
  * bottom edge. */
 gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *values,

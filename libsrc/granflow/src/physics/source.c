@@ -50,3 +50,5 @@ int gf_sh_admissible(double g, double zeta, double mu, double beta_dhdx)
 {
     return gf_sh_static_source(g, zeta, mu, beta_dhdx) == beta_dhdx;
 }
+
+double gf_dynamic_pressure(double rho, double u) { return rho * u * u; }

@@ -959,6 +959,17 @@ const double *gf_surface_momentum(const gf_surface *s) { return s->mom; }
 const double *gf_surface_pb(const gf_surface *s) { return s->pb; }
 const double *gf_surface_edge_volume(const gf_surface *s) { return s->edge_vol; }
 
+void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_peak)
+{
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
+        double u[3];
+        velocity(s, s->h, s->mom, f, u);
+        h_peak[f] = gmax(h_peak[f], s->h[f]);
+        speed_peak[f] = gmax(speed_peak[f], sqrt(dot3(u, u)));
+    }
+}
+
 double gf_surface_volume(const gf_surface *s)
 {
     double v = 0.0;

@@ -426,6 +426,22 @@ double gf_polygons_area(const gf_polygons *p, size_t k)
     return area;
 }
 
+int gf_crs_same(const char *wkt_a, const char *wkt_b)
+{
+    if (!wkt_a || !wkt_b || !*wkt_a || !*wkt_b)
+        return -1;
+    gdal_init();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    OGRSpatialReferenceH a = OSRNewSpatialReference(wkt_a), b = OSRNewSpatialReference(wkt_b);
+    CPLPopErrorHandler();
+    const int same = (a && b) ? (OSRIsSame(a, b) ? 1 : 0) : -1;
+    if (a)
+        OSRDestroySpatialReference(a);
+    if (b)
+        OSRDestroySpatialReference(b);
+    return same;
+}
+
 /*------------------------------------------------------------ mesh grid --*/
 
 gf_status gf_terrain_grid_make(const gf_raster *dem, int k, const double *box,
@@ -694,6 +710,13 @@ gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *va
     const double alt = 45 * deg, az = 315 * deg;
     const double L[3] = {cos(alt) * sin(az), cos(alt) * cos(az), sin(alt)};
     const double *z = dem->z;
+    /* contour lines: about ten over the elevation range, at 1, 2 or 5 x 10^n m */
+    double zlo = HUGE_VAL, zhi = -HUGE_VAL;
+    for (size_t i = 0; i < (size_t)nx * ny; ++i)
+        if (!isnan(z[i]))
+            zlo = fmin(zlo, z[i]), zhi = fmax(zhi, z[i]);
+    double dz = pow(10.0, floor(log10(fmax(zhi - zlo, 1e-3) / 10.0)));
+    dz *= (zhi - zlo) / dz > 50 ? 5 : (zhi - zlo) / dz > 20 ? 2 : 1;
     for (int r = 0; r < ny; ++r)
         for (int c = 0; c < nx; ++c) {
             const size_t i = (size_t)r * nx + c;
@@ -708,7 +731,12 @@ gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *va
                 const double nl = sqrt(zx * zx + zy * zy + 1);
                 double shade = (-zx * L[0] - zy * L[1] + L[2]) / nl;
                 shade = shade < 0 ? 0 : shade;
-                const double grey = 0.25 + 0.75 * shade;
+                double grey = 0.25 + 0.75 * shade;
+                /* a contour between this pixel and its east or south neighbour */
+                const double band = floor(z[i] / dz);
+                if ((c + 1 < nx && !isnan(z[i + 1]) && floor(z[i + 1] / dz) != band) ||
+                    (r + 1 < ny && !isnan(z[i + nx]) && floor(z[i + nx] / dz) != band))
+                    grey *= 0.7;
                 rgb[0] = rgb[1] = rgb[2] = grey;
                 if (isfinite(values[i]) && values[i] >= vmin) {
                     double col[3];
