@@ -242,6 +242,38 @@ static void implicit_speed_solves_backward_euler(void **state)
                     assert_true(fabs(h * s + dt * r.tau - M) <= 1e-12 * M);
             }
         }
+    /* samosAT's Newton branch (u0 = 0) over its regimes: thinner than R (no
+     * log term), thick, with a yield stress, without contact (lift-off) */
+    {
+        gf_friction f;
+        assert_int_equal(gf_friction_init(&f, "samosAT"), GF_SUCCESS);
+        assert_int_equal(gf_friction_set(&f, "u0", 0.0), GF_SUCCESS);
+        const double hs[] = {0.01, 0.3, 4.0}, tau0s[] = {0.0, 150.0}, pbf[] = {0.9, 0.0};
+        size_t n = 0;
+        for (size_t a = 0; a < 3; ++a)
+            for (size_t b = 0; b < 2; ++b)
+                for (size_t c = 0; c < 2; ++c) {
+                    assert_int_equal(gf_friction_set(&f, "tau0", tau0s[b]), GF_SUCCESS);
+                    const gf_friction_state st = {hs[a], 0.0, 200.0 * g * hs[a] * pbf[c], 200.0, g};
+                    for (double M = 1e-7; M < 300.0; M *= 2.3)
+                        for (double dtk = 1e-3; dtk < 2.0; dtk *= 10.0) {
+                            double s;
+                            assert_int_equal(gf_friction_implicit_speed(&f, &st, M, dtk, &s), GF_SUCCESS);
+                            assert_true(s >= 0.0 && s <= M / st.h);
+                            gf_friction_state x = st;
+                            x.speed = s;
+                            gf_friction_result r;
+                            assert_int_equal(gf_friction_eval(&f, &x, &r), GF_SUCCESS);
+                            if (s == 0.0)
+                                assert_true(dtk * r.tau >= M * (1.0 - 1e-12));
+                            else if (fabs(st.h * s + dtk * r.tau - M) > 1e-12 * M)
+                                fail_msg("samosAT h %g tau0 %g pb %g M %g dt %g: s %.17g, residual %.3g", st.h,
+                                         tau0s[b], st.pb, M, dtk, s, st.h * s + dtk * r.tau - M);
+                            ++n;
+                        }
+                }
+        assert_true(n > 500);
+    }
     /* exact Coulomb stops exactly at the bound and not below it */
     gf_friction c;
     assert_int_equal(gf_friction_init(&c, "coulomb"), GF_SUCCESS);

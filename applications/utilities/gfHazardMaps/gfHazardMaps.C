@@ -203,8 +203,8 @@ int main(int argc, char *argv[])
             + name(reach.min().y()) + " .. " + name(reach.max().y()) + " m, elevation "
             + name(zLow) + " .. " + name(zHigh) + " m");
     }
-    say("wrote " + outDir + "/{hPeak,speedPeak,pressurePeak}.{asc,tif}, affectedArea.geojson, "
-        "hPeak.png, pressurePeak.png, mass.csv");
+    say("wrote postProcessing/hazardMaps/{hPeak,speedPeak,pressurePeak}.{asc,tif}, affectedArea.geojson,"
+        " hPeak.png, pressurePeak.png, mass.csv");
     Info<< "End" << endl;
     return 0;
 }

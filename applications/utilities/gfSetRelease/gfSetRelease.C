@@ -26,7 +26,8 @@ Description
             // by OGR; a case meshed by gfTerrainMesh, whose offset maps the
             // polygons' georeferenced coordinates onto the mesh): faces whose
             // centre lies inside a polygon get its thickness, from a numeric
-            // attribute or a value, measured normal to the terrain (h = d)
+            // attribute (default thickness) or a value, measured normal to
+            // the terrain (h = d, the default)
             // or vertically (h = d cos(slope), the same volume per plan area)
             polygons { file "Inputs/REL/release.shp"; attribute thickness; measured normal; }
             polygons { file "Inputs/REL/release.geojson"; value 1.5; measured vertical; }
@@ -188,11 +189,12 @@ int main(int argc, char *argv[])
                         << " attribute or value, measured" << exit(FatalIOError);
                 }
             }
-            if (r.found("attribute") == r.found("value"))
+            if (r.found("attribute") && r.found("value"))
             {
                 FatalIOErrorInFunction(r)
-                    << "region polygons needs exactly one of attribute (a numeric field of the"
-                    << " polygons) and value (a thickness for all) [m]" << exit(FatalIOError);
+                    << "region polygons takes one of attribute (a numeric field of the polygons,"
+                    << " default thickness) and value (a thickness for all) [m], not both"
+                    << exit(FatalIOError);
             }
             const word measured = r.getOrDefault<word>("measured", "normal");
             if (measured != "normal" && measured != "vertical")
@@ -213,7 +215,8 @@ int main(int argc, char *argv[])
             const vector offset = terrain.get<vector>("offset");
             const fileName file = r.get<fileName>("file");
             const fileName path = granflow::terrainCase::inCase(file, runTime.path());
-            const std::string attr = r.found("attribute") ? r.get<word>("attribute") : word();
+            const std::string attr =
+                r.found("value") ? word() : r.getOrDefault<word>("attribute", "thickness");
             const scalar value = r.getOrDefault<scalar>("value", 0);
             gf_polygons P;
             granflow::terrainCase::check

@@ -153,9 +153,9 @@ double gf_friction_decelerate(double u, double decel_dt);
  * For a tau non-decreasing in s the root is unique (all laws but samosAT,
  * whose Coulomb factor falls with speed: then a root in [0, M/h] is taken,
  * unique where h/dt exceeds the factor's fall); coulomb
- * (any u0), mu_i and voellmy with u0 = 0 are solved in closed form, the others
- * by Illinois regula falsi
- * with bisection steps, to 1e-14 relative.  s->speed is not
+ * (any u0), mu_i and voellmy with u0 = 0 are solved in closed form, samosAT
+ * with u0 = 0 by Newton kept inside the root's bracket, the others by
+ * Illinois regula falsi with bisection steps, to 1e-14 relative.  s->speed is not
  * used.  GF_EDOM / GF_ENONFINITE for a negative or non-finite M, dt or state;
  * h must be > 0. */
 gf_status gf_friction_implicit_speed(const gf_friction *f, const gf_friction_state *s, double M,

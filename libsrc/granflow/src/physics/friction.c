@@ -361,6 +361,44 @@ gf_status gf_friction_implicit_speed(const gf_friction *f, const gf_friction_sta
         *speed = -2.0 * a0 / (h + sqrt(h * h - 4.0 * a2 * a0));
         return GF_SUCCESS;
     }
+    /* samosAT, u0 = 0: for s > 0 tau = t0 + A (1 + Rs0/(Rs0 + c s^2)) + cd s^2
+     * (t0 = tau0/rho and A = mu p_b/rho with contact, c = rho/(p_b + 0.001),
+     * cd the drag coefficient; the law's eval), at rest t0 + 2 A.  Newton on
+     * g(s) = h s + dt tau(s) - M, kept inside the bracket [lo, hi] of
+     * [0, M/h] (bisection when a step leaves it): a few iterations where
+     * regula falsi needs tens, each without the law's logarithm. */
+    if (f->type == gf_friction_samosat && f->p[6] == 0.0) {
+        const double sig = s->pb > 0.0 ? s->pb : 0.0, rs0 = f->p[2];
+        const double A = f->p[0] * sig / s->rho, t0 = sig > 0.0 ? f->p[1] / s->rho : 0.0;
+        const double c = s->rho / (sig + 0.001);
+        const double lr = h > f->p[4] ? log(h / f->p[4]) : 0.0, den = lr / f->p[3] + f->p[5];
+        const double cd = 1.0 / (den * den);
+        if (dt * (t0 + 2.0 * A) >= M) {
+            *speed = 0.0;
+            return GF_SUCCESS;
+        }
+        double lo = 0.0, hi = M / h, x = hi;
+        for (int it = 0; it < 100; ++it) {
+            const double q = rs0 + c * x * x;
+            const double gx = h * x + dt * (t0 + A * (1.0 + rs0 / q) + cd * x * x) - M;
+            if (gx == 0.0)
+                break;
+            if (gx < 0.0)
+                lo = x;
+            else
+                hi = x;
+            const double dg = h + dt * (2.0 * cd * x - 2.0 * A * rs0 * c * x / (q * q));
+            double xn = dg > 0.0 ? x - gx / dg : -1.0;
+            if (!(xn > lo && xn < hi))
+                xn = 0.5 * (lo + hi);
+            const double step = fabs(xn - x);
+            x = xn;
+            if (step <= 1e-15 * x || hi - lo <= 1e-15 * hi)
+                break;
+        }
+        *speed = x;
+        return GF_SUCCESS;
+    }
     const double tau0 = tau_at(f, s, 0.0);
     if (dt * tau0 >= M) {
         *speed = 0.0;
