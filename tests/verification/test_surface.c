@@ -180,6 +180,57 @@ static void peak_fields_are_the_maxima_over_all_steps(void **state)
     free(h), free(hp), free(up), free(hs), free(us);
 }
 
+/* A restart: a second solver given the first one's h, momentum and normal
+ * acceleration (gf_surface_restore) after 150 steps of a pile sliding onto the curved bed
+ * (40 -> 10 deg, Coulomb 20 deg) continues it exactly: the next 150 steps at
+ * the same time steps give the same h and momentum bit for bit. */
+static void restart_continues_the_run_exactly(void **state)
+{
+    (void)state;
+    strip_mesh *sm = strip_mesh_new(120, 30, 0, 30, -3.75, 3.75, curved_zeta, NULL, WALLS);
+    gf_surface_config c;
+    gf_surface_config_default(&c);
+    coulomb(&c, 20);
+    gf_surface *a = make_solver(sm, &c), *b = make_solver(sm, &c);
+    const size_t nf = sm->m.n_faces;
+    double *h = paraboloid(sm, 5.0, 0.5);
+    assert_int_equal(gf_surface_set_state(a, h, NULL), GF_SUCCESS);
+    for (int n = 0; n < 150; ++n) {
+        double dt;
+        assert_int_equal(gf_surface_max_dt(a, &dt), GF_SUCCESS);
+        assert_int_equal(gf_surface_step(a, dt), GF_SUCCESS);
+    }
+    assert_int_equal(gf_surface_restore(b, gf_surface_h(a), gf_surface_momentum(a), gf_surface_normal_acceleration(a)),
+                     GF_SUCCESS);
+    double dmax = 0;
+    for (int n = 0; n < 150; ++n) {
+        double dta, dtb;
+        assert_int_equal(gf_surface_max_dt(a, &dta), GF_SUCCESS);
+        assert_int_equal(gf_surface_max_dt(b, &dtb), GF_SUCCESS);
+        assert_true(dta == dtb);
+        assert_int_equal(gf_surface_step(a, dta), GF_SUCCESS);
+        assert_int_equal(gf_surface_step(b, dtb), GF_SUCCESS);
+        const double *ha = gf_surface_h(a), *hb = gf_surface_h(b);
+        const double *ma = gf_surface_momentum(a), *mb = gf_surface_momentum(b);
+        for (size_t f = 0; f < nf; ++f) {
+            dmax = fmax(dmax, fabs(ha[f] - hb[f]));
+            for (int k = 0; k < 3; ++k)
+                dmax = fmax(dmax, fabs(ma[3 * f + k] - mb[3 * f + k]));
+        }
+    }
+    printf("  restart after 150 steps: max difference over the next 150 steps %.1e\n", dmax);
+    assert_true(dmax == 0.0);
+    /* a negative normal acceleration is refused */
+    double *bad = calloc(nf, sizeof *bad);
+    bad[3] = -1.0;
+    assert_int_equal(gf_surface_restore(b, gf_surface_h(a), gf_surface_momentum(a), bad), GF_EDOM);
+    free(bad);
+    gf_surface_free(a);
+    gf_surface_free(b);
+    strip_mesh_free(sm);
+    free(h);
+}
+
 /* Dam breaks on a dry bed along a strip (walls at the sides): frictionless
  * Ritter (g = 1, h0 = 1, dam at x = 6) and Coulomb on a 35 deg incline with
  * bed friction 30 deg (the reservoir enters at u = a t through the inflow
@@ -284,6 +335,7 @@ int main(void)
         cmocka_unit_test(pile_at_rest_on_plane_and_curved_bed),
         cmocka_unit_test(mass_conserved_in_a_closed_box),
         cmocka_unit_test(peak_fields_are_the_maxima_over_all_steps),
+        cmocka_unit_test(restart_continues_the_run_exactly),
         cmocka_unit_test(dry_fronts_against_exact),
     };
     return cmocka_run_group_tests_name("surface_verification", tests, NULL, NULL);

@@ -131,6 +131,17 @@ void gf_surface_set_exchange(gf_surface *s, gf_surface_exchange_fn fn, void *ctx
  * set to 0 where h <= h_dry.  Errors name the face. */
 gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *m);
 
+/* The normal acceleration a = p_b/(rho h) [m/s^2] of each face that the next
+ * stage's pressure and wave speeds use ([n_faces+n_ghosts]; hydrostatic
+ * -g.n after gf_surface_set_state, then eq. 33's value of the last stage). */
+const double *gf_surface_normal_acceleration(const gf_surface *s);
+
+/* A restart: the state exactly as this scheme had it - h, the momentum
+ * (gf_surface_momentum, kept as given, also on faces with h <= h_dry) and
+ * the normal acceleration - so that the run continues bit for bit as the
+ * uninterrupted one (same time steps given).  Errors name the face. */
+gf_status gf_surface_restore(gf_surface *s, const double *h, const double *m, const double *a);
+
 /* Prescribed state of an inflow edge: thickness h >= 0 and velocity u (3D,
  * projected onto the owner's tangent plane). */
 gf_status gf_surface_set_inflow(gf_surface *s, size_t edge, double h, const double u[3]);

@@ -288,15 +288,18 @@ static gf_status exchange(gf_surface *s, double *field, int ncomp)
     return GF_SUCCESS;
 }
 
-gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *mom)
+/* The state of the owned faces.  exact == 0 (an initial condition): m
+ * projected onto the tangent planes, 0 where h <= h_dry, a hydrostatic;
+ * exact == 1 (gf_surface_restore): h, m and a as given. */
+static gf_status load_state(gf_surface *s, const double *h, const double *mom, const double *a, int exact)
 {
     const size_t nf = s->m.n_faces;
     s->active_fresh = 0;
     s->h_scale = 0.0;
     for (size_t f = 0; f < nf; ++f) {
         if (!isfinite(h[f]) || h[f] < 0.0)
-            return gf_fail(GF_EDOM, "surface scheme: initial thickness h = %g in face %zu (must be finite, >= 0)",
-                           h[f], f);
+            return gf_fail(GF_EDOM, "surface scheme: thickness h = %g in face %zu (must be finite, >= 0)", h[f],
+                           f);
         s->h[f] = h[f];
         s->h_scale = gmax(s->h_scale, h[f]);
         double *m = s->mom + 3 * f;
@@ -304,7 +307,14 @@ gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *mom
         for (int k = 0; k < 3; ++k) {
             m[k] = mom ? mom[3 * f + k] : 0.0;
             if (!isfinite(m[k]))
-                return gf_fail(GF_ENONFINITE, "surface scheme: initial momentum of face %zu is not finite", f);
+                return gf_fail(GF_ENONFINITE, "surface scheme: momentum of face %zu is not finite", f);
+        }
+        if (exact) {
+            if (!isfinite(a[f]) || a[f] < 0.0)
+                return gf_fail(GF_EDOM, "surface scheme: normal acceleration %g in face %zu (must be finite, >= 0)",
+                               a[f], f);
+            s->a[f] = a[f];
+            continue;
         }
         const double mn = dot3(m, n);
         for (int k = 0; k < 3; ++k)
@@ -315,8 +325,29 @@ gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *mom
     gf_status st;
     if ((st = exchange(s, s->h, 1)) || (st = exchange(s, s->mom, 3)) || (st = exchange(s, s->a, 1)))
         return st;
+    /* stage buffers equal to the state everywhere (as for faces that leave
+     * the active set): a neighbour outside the set reads true values */
+    const size_t nt = s->nt;
+    memcpy(s->h1, s->h, nt * sizeof *s->h1);
+    memcpy(s->h2, s->h, nt * sizeof *s->h2);
+    memcpy(s->m1, s->mom, 3 * nt * sizeof *s->m1);
+    memcpy(s->m2, s->mom, 3 * nt * sizeof *s->m2);
     return GF_SUCCESS;
 }
+
+gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *mom)
+{
+    return load_state(s, h, mom, NULL, 0);
+}
+
+gf_status gf_surface_restore(gf_surface *s, const double *h, const double *mom, const double *a)
+{
+    if (!h || !mom || !a)
+        return gf_fail(GF_EINVAL, "gf_surface_restore: h, momentum and normal acceleration are all needed");
+    return load_state(s, h, mom, a, 1);
+}
+
+const double *gf_surface_normal_acceleration(const gf_surface *s) { return s->a; }
 
 gf_status gf_surface_set_inflow(gf_surface *s, size_t edge, double h, const double u[3])
 {
