@@ -262,6 +262,22 @@ static void mesh_grid_skips_nodata_and_follows_the_crop(void **state)
     assert_int_equal(g.n_quads, 2 * 4 - 2);
     assert_int_equal(g.c0, 0);
     gf_terrain_grid_free(&g);
+    /* crop polygons: a triangle over the south-west corner keeps the faces
+     * whose centres lie inside it */
+    {
+        const char *tri = tmp("crop.geojson");
+        write_text(tri, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
+                        "\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[[100,200],[136,200],[100,236],[100,200]]]}}]}");
+        gf_polygons crop;
+        assert_int_equal(gf_polygons_read(tri, NULL, 1.0, &crop), GF_SUCCESS);
+        assert_int_equal(gf_terrain_grid_make(&dem, 1, NULL, &crop, &g), GF_SUCCESS);
+        /* quad centres (110 + 10 I, 240 - 10 J) are inside when
+         * (x - 100) + (y - 200) < 36: (I, J) = (0, 3), (1, 3), (0, 2), none
+         * next to the NODATA pixel */
+        assert_int_equal(g.n_quads, 3);
+        gf_terrain_grid_free(&g);
+        gf_polygons_free(&crop);
+    }
     const double nobox[4] = {0, 0, 10, 10};
     assert_int_equal(gf_terrain_grid_make(&dem, 1, nobox, NULL, &g), GF_EDOM);
     assert_int_equal(gf_terrain_grid_make(&dem, 5, NULL, NULL, &g), GF_EDOM);
