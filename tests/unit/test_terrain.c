@@ -341,7 +341,7 @@ static void face_values_map_onto_the_dem_grid(void **state)
 
 /* The affected-area outline: pixels >= threshold, their area, the GeoJSON
  * polygons' areas summing to it; the PNG map has the DEM's size plus the
- * colour bar */
+ * colour bar; a 3D line (the centre-of-mass path) as GeoJSON */
 static void outline_and_map_are_written(void **state)
 {
     (void)state;
@@ -379,6 +379,24 @@ static void outline_and_map_are_written(void **state)
     assert_true(GDALGetRasterYSize(ds) > 5);
     GDALClose(ds);
     assert_int_equal(gf_raster_png(tmp("map2.png"), &dem, v, 1.0, 1.0), GF_EDOM);
+    /* a 3D line with properties, read back by OGR */
+    const double xyz[9] = {100, 200, 50, 130, 240, 20, 150, 250, 10};
+    const char *keys[1] = {"length_m"};
+    const double vals[1] = {42.5};
+    assert_int_equal(gf_line_geojson(tmp("path.geojson"), "", 3, xyz, "path", 1, keys, vals), GF_SUCCESS);
+    ds = GDALOpenEx(tmp("path.geojson"), GDAL_OF_VECTOR, NULL, NULL, NULL);
+    assert_non_null(ds);
+    L = GDALDatasetGetLayer(ds, 0);
+    f = OGR_L_GetNextFeature(L);
+    assert_non_null(f);
+    assert_close(OGR_F_GetFieldAsDouble(f, OGR_F_GetFieldIndex(f, "length_m")), 42.5, 0);
+    OGRGeometryH geom = OGR_F_GetGeometryRef(f);
+    assert_int_equal(OGR_G_GetPointCount(geom), 3);
+    assert_close(OGR_G_GetZ(geom, 1), 20, 0);
+    assert_close(OGR_G_Length(geom), 50.0 + sqrt(500.0), 1e-12);
+    OGR_F_Destroy(f);
+    GDALClose(ds);
+    assert_int_equal(gf_line_geojson(tmp("p1.geojson"), "", 1, xyz, "path", 0, NULL, NULL), GF_EDOM);
     gf_raster_free(&dem);
 }
 

@@ -10,6 +10,10 @@ Description
         speedPeak.asc/.tif     peak speed [m/s]
         pressurePeak.asc/.tif  peak dynamic pressure rho speedPeak^2 [kPa]
         affectedArea.geojson   outline of hPeak >= threshold (area per polygon)
+        comPath.geojson        the path of the centre of mass (3D line) over
+                               every time step (the solver's centreOfMass.dat)
+                               or else the written times, its horizontal
+                               travel, drop and travel angle atan(drop/travel)
         hPeak.png, pressurePeak.png   hillshade of the DEM tinted by the peak field
         mass.csv               volume, net outflow and balance at every written time
         summary.dat            the numbers printed at the end
@@ -26,6 +30,8 @@ Usage
 #include "faCFD.H"
 #include "OFstream.H"
 #include "IFstream.H"
+#include <fstream>
+#include <sstream>
 #include "timeSelector.H"
 
 #include "terrainCase.H"
@@ -187,6 +193,82 @@ int main(int argc, char *argv[])
                 << ',' << mb.get<scalar>("imbalance") << nl;
     }
 
+    // the centre of mass at every time step (the solver's
+    // postProcessing/centreOfMass/<start>/centreOfMass.dat, the files of a
+    // restarted run joined), else at every written time: its path (GeoJSON),
+    // the horizontal distance it travelled, its drop and the travel angle
+    // atan(drop/distance) of the energy line of the centre of mass
+    DynamicList<double> com;
+    word comSource("written times");
+    {
+        const fileName comDir = runTime.globalPath()/"postProcessing"/"centreOfMass";
+        instantList starts;
+        for (const fileName& d : readDir(comDir, fileName::DIRECTORY))
+        {
+            scalar t0;
+            if (readScalar(d, t0)) starts.append(instant(t0, d));
+        }
+        Foam::sort(starts);
+        forAll(starts, k)
+        {
+            const scalar tNext = k + 1 < starts.size() ? starts[k + 1].value() : GREAT;
+            std::ifstream is((comDir/starts[k].name()/"centreOfMass.dat").c_str());
+            std::string line;
+            while (std::getline(is, line))
+            {
+                if (line.empty() || line[0] == '#') continue;
+                std::istringstream ls(line);
+                double t, v, x, y, z;
+                if (!(ls >> t >> v >> x >> y >> z))
+                {
+                    FatalErrorInFunction
+                        << "Bad line '" << line.c_str() << "' in " << comDir/starts[k].name()
+                        << "/centreOfMass.dat" << exit(FatalError);
+                }
+                if (t >= tNext) break;
+                com.append(x + tc.offset.x());
+                com.append(y + tc.offset.y());
+                com.append(z + tc.offset.z());
+            }
+        }
+        if (com.size() >= 6) comSource = "time steps";
+    }
+    for (const instant& t : times)
+    {
+        if (comSource == "time steps") break;
+        IOobject hio("h", t.name(), mesh, IOobject::MUST_READ);
+        if (!hio.typeHeaderOk<areaScalarField>(true)) continue;
+        const areaScalarField ht(hio, aMesh);
+        const scalar v = gSum(ht.primitiveField()*S);
+        if (!(v > 0)) continue;
+        const vector c = gSum(ht.primitiveField()*S*C)/v + tc.offset;
+        com.append(c.x());
+        com.append(c.y());
+        com.append(c.z());
+    }
+    scalar travel = 0, drop = 0;
+    const label nCom = com.size()/3;
+    for (label i = 1; i < nCom; ++i)
+    {
+        travel += Foam::sqrt(sqr(com[3*i] - com[3*i - 3]) + sqr(com[3*i + 1] - com[3*i - 2]));
+    }
+    if (nCom >= 2)
+    {
+        drop = com[2] - com[3*nCom - 1];
+        const scalar angle = radToDeg(Foam::atan2(drop, travel));
+        const char* keys[3] = {"travel_m", "drop_m", "travel_angle_deg"};
+        const double vals[3] = {travel, drop, angle};
+        granflow::terrainCase::check
+        (
+            props, "dem",
+            gf_line_geojson
+            (
+                (outDir/"comPath.geojson").c_str(), tc.dem.wkt, size_t(nCom), com.cdata(),
+                "centre of mass", 3, keys, vals
+            )
+        );
+    }
+
     OFstream summary(outDir/"summary.dat");
     summary.precision(8);
     const auto say = [&](const string& line) { Info<< line.c_str() << nl; summary << line.c_str() << nl; };
@@ -203,8 +285,14 @@ int main(int argc, char *argv[])
             + name(reach.min().y()) + " .. " + name(reach.max().y()) + " m, elevation "
             + name(zLow) + " .. " + name(zHigh) + " m");
     }
+    if (nCom >= 2)
+    {
+        say("centre of mass: " + name(travel) + " m travelled (horizontal, over " + name(nCom)
+            + " " + comSource + "), " + name(drop) + " m drop, travel angle "
+            + name(radToDeg(Foam::atan2(drop, travel))) + " deg");
+    }
     say("wrote postProcessing/hazardMaps/{hPeak,speedPeak,pressurePeak}.{asc,tif}, affectedArea.geojson,"
-        " hPeak.png, pressurePeak.png, mass.csv");
+        " comPath.geojson, hPeak.png, pressurePeak.png, mass.csv");
     Info<< "End" << endl;
     return 0;
 }

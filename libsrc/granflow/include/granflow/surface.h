@@ -169,6 +169,11 @@ const double *gf_surface_edge_volume(const gf_surface *s);
  * call after each gf_surface_step. */
 void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_peak);
 
+/* First moments of the owned faces' volume for the centre of mass:
+ * out[0] = sum A h, out[1..3] = sum A h x_f (face centres), over the active
+ * set (the other faces are dry). */
+void gf_surface_moments(const gf_surface *s, double out[4]);
+
 /* Volume sum_f A_f h_f of the owned faces. */
 double gf_surface_volume(const gf_surface *s);
 

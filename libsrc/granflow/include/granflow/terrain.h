@@ -123,6 +123,12 @@ gf_status gf_terrain_to_raster(const gf_raster *dem, const gf_terrain_grid *g, s
 gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
                             double threshold, double *area);
 
+/* A line (n >= 2 points, georeferenced x y z interleaved) as a GeoJSON
+ * LineString feature in the CRS wkt ("" for none), with a name and the
+ * numeric properties given (keys[k] = values[k], nprops of them). */
+gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const double *xyz, const char *name,
+                          size_t nprops, const char *const *keys, const double *values);
+
 /* PNG map: the hillshade of dem (sun from the north-west, 45 deg high)
  * with contour lines (about ten over the elevation range, every 1, 2 or 5 x
  * 10^n m) tinted by values where values >= vmin, colours from vmin to vmax on a

@@ -1001,6 +1001,16 @@ void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_
     }
 }
 
+void gf_surface_moments(const gf_surface *s, double out[4])
+{
+    out[0] = out[1] = out[2] = out[3] = 0.0;
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
+        const double v = s->m.area[f] * s->h[f], *x = s->m.centre + 3 * f;
+        out[0] += v, out[1] += v * x[0], out[2] += v * x[1], out[3] += v * x[2];
+    }
+}
+
 double gf_surface_volume(const gf_surface *s)
 {
     double v = 0.0;

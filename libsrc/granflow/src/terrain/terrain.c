@@ -682,6 +682,57 @@ done:
     return st;
 }
 
+gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const double *xyz, const char *name,
+                          size_t nprops, const char *const *keys, const double *values)
+{
+    gdal_init();
+    if (n < 2)
+        return gf_fail(GF_EDOM, "line %s: %zu points; a line needs at least 2", path, n);
+    GDALDriverH gj = GDALGetDriverByName("GeoJSON");
+    if (!gj)
+        return gf_fail(GF_EIO, "line %s: GDAL lacks the GeoJSON driver", path);
+    OGRSpatialReferenceH srs = NULL;
+    if (wkt && *wkt) {
+        srs = OSRNewSpatialReference(wkt);
+        OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
+    }
+    unlink(path);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALDatasetH out = GDALCreate(gj, path, 0, 0, 0, GDT_Unknown, NULL);
+    CPLPopErrorHandler();
+    gf_status st = GF_SUCCESS;
+    if (!out) {
+        st = gf_fail(GF_EIO, "line %s: GDAL cannot write it (%s)", path, gdal_msg());
+        goto done;
+    }
+    OGRLayerH L = GDALDatasetCreateLayer(out, name, srs, wkbLineString25D, NULL);
+    OGRFieldDefnH fn = OGR_Fld_Create("name", OFTString);
+    OGR_L_CreateField(L, fn, TRUE);
+    OGR_Fld_Destroy(fn);
+    for (size_t k = 0; k < nprops; ++k) {
+        OGRFieldDefnH fd = OGR_Fld_Create(keys[k], OFTReal);
+        OGR_L_CreateField(L, fd, TRUE);
+        OGR_Fld_Destroy(fd);
+    }
+    OGRFeatureH f = OGR_F_Create(OGR_L_GetLayerDefn(L));
+    OGR_F_SetFieldString(f, 0, name);
+    for (size_t k = 0; k < nprops; ++k)
+        OGR_F_SetFieldDouble(f, (int)k + 1, values[k]);
+    OGRGeometryH g = OGR_G_CreateGeometry(wkbLineString25D);
+    for (size_t i = 0; i < n; ++i)
+        OGR_G_AddPoint(g, xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    OGR_F_SetGeometryDirectly(f, g);
+    if (OGR_L_CreateFeature(L, f) != OGRERR_NONE)
+        st = gf_fail(GF_EIO, "line %s: writing the feature failed (%s)", path, gdal_msg());
+    OGR_F_Destroy(f);
+done:
+    if (out)
+        GDALClose(out);
+    if (srs)
+        OSRDestroySpatialReference(srs);
+    return st;
+}
+
 /*------------------------------------------------------------------- map --*/
 
 static void ramp(double t, double rgb[3])
