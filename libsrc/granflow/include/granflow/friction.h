@@ -154,7 +154,8 @@ double gf_friction_decelerate(double u, double decel_dt);
  * whose Coulomb factor falls with speed: then a root in [0, M/h] is taken,
  * unique where h/dt exceeds the factor's fall); coulomb
  * (any u0), mu_i and voellmy with u0 = 0 are solved in closed form, samosAT
- * with u0 = 0 by Newton kept inside the root's bracket, the others by
+ * with u0 = 0 by Newton kept inside the root's bracket (started from the
+ * root with its Coulomb factor frozen at speed M/h), the others by
  * Illinois regula falsi with bisection steps, to 1e-14 relative.  s->speed is not
  * used.  GF_EDOM / GF_ENONFINITE for a negative or non-finite M, dt or state;
  * h must be > 0. */

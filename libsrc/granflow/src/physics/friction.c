@@ -378,6 +378,16 @@ gf_status gf_friction_implicit_speed(const gf_friction *f, const gf_friction_sta
             return GF_SUCCESS;
         }
         double lo = 0.0, hi = M / h, x = hi;
+        /* start: the root with the Coulomb factor frozen at speed M/h, a
+         * quadratic; the factor only grows as the speed falls, so that root
+         * is an upper bound of the true one */
+        {
+            const double Af = A * (1.0 + rs0 / (rs0 + c * hi * hi)), b = M - dt * (t0 + Af);
+            if (b > 0.0)
+                hi = x = 2.0 * b / (h + sqrt(h * h + 4.0 * dt * cd * b));
+            else
+                x = 0.5 * hi;
+        }
         for (int it = 0; it < 100; ++it) {
             const double q = rs0 + c * x * x;
             const double gx = h * x + dt * (t0 + A * (1.0 + rs0 / q) + cd * x * x) - M;
