@@ -97,20 +97,31 @@ static void pile_at_rest_on_plane_and_curved_bed(void **state)
     }
 }
 
+/* A pile (paraboloid, 0.5 m high at 4 m) on a 35 deg plane in a closed box
+ * (80 x 30 faces, walls), Coulomb bed friction 20 deg: it slides and
+ * spreads.  Returns the solver; the mesh, configuration and initial h out. */
+static gf_surface *sliding_pile(strip_mesh **sm, gf_surface_config *c, double **h)
+{
+    static double zeta = 35 * GF_DEG;
+    *sm = strip_mesh_new(80, 30, 0, 20, -3.75, 3.75, const_zeta, &zeta, WALLS);
+    gf_surface_config_default(c);
+    coulomb(c, 20);
+    gf_surface *s = make_solver(*sm, c);
+    *h = paraboloid(*sm, 4.0, 0.5);
+    assert_int_equal(gf_surface_set_state(s, *h, NULL), GF_SUCCESS);
+    return s;
+}
+
 /* Volume in a closed box is conserved to 1e-12 while a pile slides and
  * spreads (35 deg plane, bed friction 20 deg, walls all round) and h >= 0. */
 static void mass_conserved_in_a_closed_box(void **state)
 {
     (void)state;
-    double zeta = 35 * GF_DEG;
-    strip_mesh *sm = strip_mesh_new(80, 30, 0, 20, -3.75, 3.75, const_zeta, &zeta, WALLS);
+    strip_mesh *sm;
     gf_surface_config c;
-    gf_surface_config_default(&c);
-    coulomb(&c, 20);
-    gf_surface *s = make_solver(sm, &c);
+    double *h;
+    gf_surface *s = sliding_pile(&sm, &c, &h);
     const size_t nf = sm->m.n_faces;
-    double *h = paraboloid(sm, 4.0, 0.5);
-    assert_int_equal(gf_surface_set_state(s, h, NULL), GF_SUCCESS);
     const double v0 = gf_surface_volume(s);
     double t = 0.0;
     assert_true(surface_advance(s, &t, 6.0) > 0);
@@ -138,15 +149,11 @@ static void mass_conserved_in_a_closed_box(void **state)
 static void peak_fields_are_the_maxima_over_all_steps(void **state)
 {
     (void)state;
-    double zeta = 35 * GF_DEG;
-    strip_mesh *sm = strip_mesh_new(80, 30, 0, 20, -3.75, 3.75, const_zeta, &zeta, WALLS);
+    strip_mesh *sm;
     gf_surface_config c;
-    gf_surface_config_default(&c);
-    coulomb(&c, 20);
-    gf_surface *s = make_solver(sm, &c);
+    double *h;
+    gf_surface *s = sliding_pile(&sm, &c, &h);
     const size_t nf = sm->m.n_faces;
-    double *h = paraboloid(sm, 4.0, 0.5);
-    assert_int_equal(gf_surface_set_state(s, h, NULL), GF_SUCCESS);
     double *hp = calloc(nf, sizeof *hp), *up = calloc(nf, sizeof *up);
     double *hs = calloc(nf, sizeof *hs), *us = calloc(nf, sizeof *us);
     memcpy(hp, h, nf * sizeof *h);

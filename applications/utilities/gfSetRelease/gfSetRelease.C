@@ -219,10 +219,13 @@ int main(int argc, char *argv[])
                 r.found("value") ? word() : r.getOrDefault<word>("attribute", "thickness");
             const scalar value = r.getOrDefault<scalar>("value", 0);
             gf_polygons P;
-            granflow::terrainCase::check
-            (
-                r, "file", gf_polygons_read(path.c_str(), attr.empty() ? nullptr : attr.c_str(), value, &P)
-            );
+            if (gf_polygons_read(path.c_str(), attr.empty() ? nullptr : attr.c_str(), value, &P) != GF_SUCCESS)
+            {
+                FatalIOErrorInFunction(dict)
+                    << "regions/polygons (file " << file
+                    << (attr.empty() ? word::null : word(", attribute " + attr))
+                    << ") of system/releaseDict: " << gf_error_detail() << exit(FatalIOError);
+            }
             const string demCrs = terrain.getOrDefault<string>("crs", "");
             if (gf_crs_same(P.wkt, demCrs.c_str()) == 0)
             {
