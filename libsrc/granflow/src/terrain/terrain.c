@@ -746,13 +746,53 @@ static void ramp(double t, double rgb[3])
         rgb[c] = (1 - u) * stop[i][c] + u * stop[i + 1][c];
 }
 
+/* A 3 x 5 pixel font for the scale's numbers: digits, '.', '-', '+', 'e' */
+static const char *glyph(char ch)
+{
+    switch (ch) {
+    case '0': return "111101101101111";
+    case '1': return "010110010010111";
+    case '2': return "111001111100111";
+    case '3': return "111001111001111";
+    case '4': return "101101111001001";
+    case '5': return "111100111001111";
+    case '6': return "111100111101111";
+    case '7': return "111001001001001";
+    case '8': return "111101111101111";
+    case '9': return "111101111001111";
+    case '.': return "000000000000010";
+    case '-': return "000000111000000";
+    case '+': return "000010111010000";
+    case 'e': return "000111111100111";
+    default: return "000000000000000";
+    }
+}
+
+static int text_width(const char *t, int fs) { return (int)strlen(t) * 4 * fs - fs; }
+
+/* black text with its top-left corner at (x, y), pixels scaled by fs */
+static void draw_text(unsigned char *img, int nx, int H, int x, int y, const char *t, int fs)
+{
+    const size_t np = (size_t)nx * (size_t)H;
+    for (; *t; ++t, x += 4 * fs) {
+        const char *g = glyph(*t);
+        for (int r = 0; r < 5 * fs; ++r)
+            for (int c = 0; c < 3 * fs; ++c)
+                if (g[(r / fs) * 3 + c / fs] == '1' && x + c >= 0 && x + c < nx && y + r < H)
+                    for (int k = 0; k < 3; ++k)
+                        img[k * np + (size_t)(y + r) * nx + (x + c)] = 0;
+    }
+}
+
 gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *values,
                         double vmin, double vmax)
 {
     gdal_init();
     if (!(vmax > vmin) || !isfinite(vmin) || !isfinite(vmax))
         return gf_fail(GF_EDOM, "map %s: colour range [%g, %g] is empty or not finite", path, vmin, vmax);
-    const int nx = dem->nx, ny = dem->ny, bar = ny / 40 + 6, H = ny + bar;
+    /* below the map: the colour bar, then vmin and vmax at its ends */
+    const int nx = dem->nx, ny = dem->ny, bar = ny / 40 + 4, fs = nx >= 300 ? 2 : 1;
+    const int H = ny + 2 + bar + 3 + 5 * fs + 2;
     const size_t np = (size_t)nx * (size_t)H;
     unsigned char *img = malloc(3 * np);
     if (!img)
@@ -802,11 +842,17 @@ gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *va
     for (int r = ny; r < H; ++r)
         for (int c = 0; c < nx; ++c) {
             double col[3] = {1, 1, 1};
-            if (r > ny + 1)
+            if (r >= ny + 2 && r < ny + 2 + bar)
                 ramp((double)c / (nx - 1), col);
             for (int k = 0; k < 3; ++k)
                 img[k * np + (size_t)r * nx + c] = (unsigned char)lround(255 * col[k]);
         }
+    char lo[32], hi[32];
+    snprintf(lo, sizeof lo, "%.3g", vmin);
+    snprintf(hi, sizeof hi, "%.3g", vmax);
+    const int ty = ny + 2 + bar + 3;
+    draw_text(img, nx, H, 1, ty, lo, fs);
+    draw_text(img, nx, H, nx - 1 - text_width(hi, fs), ty, hi, fs);
     gf_status st = GF_SUCCESS;
     GDALDatasetH mem = mem_raster(NULL, nx, H, 3, GDT_Byte), out = NULL;
     GDALDriverH png = GDALGetDriverByName("PNG");
