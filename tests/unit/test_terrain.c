@@ -205,6 +205,20 @@ static void release_polygons_with_holes_parts_and_attributes(void **state)
                                           "thickness", 0, &kot), GF_SUCCESS);
         /* both MGI / Austria Lambert */
         assert_int_equal(gf_crs_same(p.wkt, kot.wkt), 1);
+        /* the same .prj read as a raster's CRS (GDAL's ESRI morphing: the
+         * other axis order) against the shapefile's; against WGS 84 */
+        const char *asc = tmp("kot.asc"), *prj = tmp("kot.prj");
+        write_text(asc, "ncols 2\nnrows 2\nxllcorner 177000\nyllcorner 377000\ncellsize 5\n1 2\n3 4\n");
+        char cmd[512];
+        snprintf(cmd, sizeof cmd, "cp %s/tutorials/avaKot/Inputs/REL/relKot.prj %s", GF_SOURCE_DIR, prj);
+        assert_int_equal(system(cmd), 0);
+        gf_raster r;
+        assert_int_equal(gf_raster_read(asc, &r), GF_SUCCESS);
+        assert_true(strstr(r.wkt, "Austria Lambert") != NULL);
+        assert_int_equal(gf_crs_same(r.wkt, kot.wkt), 1);
+        assert_int_equal(gf_crs_same(r.wkt, "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],"
+                                            "PRIMEM[\"Greenwich\",0],UNIT[\"degree\",0.0174532925199433]]"), 0);
+        gf_raster_free(&r);
         gf_polygons_free(&kot);
     }
     assert_true(gf_polygons_area(&p, 0) > 3e4 && gf_polygons_area(&p, 0) < 8e4);

@@ -86,8 +86,10 @@ long gf_polygons_locate(const gf_polygons *p, double x, double y);
 /* Plane area of polygon k (exterior minus holes, shoelace formula). */
 double gf_polygons_area(const gf_polygons *p, size_t k);
 
-/* Do two CRS (WKT) describe the same coordinate system?  1 yes, 0 no, -1
- * when either is empty or not understood (nothing to compare). */
+/* Do two CRS (WKT) describe the same coordinate system (GDAL's OSRIsSame,
+ * or the same PROJ string apart from a datum shift +towgs84: an EPSG
+ * definition and the ESRI .prj of the same projection agree)?  1 yes, 0 no,
+ * -1 when either is empty or not understood. */
 int gf_crs_same(const char *wkt_a, const char *wkt_b);
 
 /* The node grid of an area mesh on a DEM (see the top of this file). */
@@ -118,14 +120,17 @@ gf_status gf_terrain_to_raster(const gf_raster *dem, const gf_terrain_grid *g, s
                                double *out);
 
 /* Outline of the pixels with values >= threshold (GDAL's polygonize):
- * GeoJSON polygons in the grid's CRS with their area [m2]; returns the
- * affected area (pixels x pixel area) in *area when not NULL. */
+ * GeoJSON polygons with their area [m2, in the grid's CRS]; returns the
+ * affected area (pixels x pixel area) in *area when not NULL.  GeoJSON is
+ * WGS 84 longitude/latitude (RFC 7946): with a CRS the polygons are
+ * reprojected, without one they keep the grid's coordinates. */
 gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
                             double threshold, double *area);
 
 /* A line (n >= 2 points, georeferenced x y z interleaved) as a GeoJSON
- * LineString feature in the CRS wkt ("" for none), with a name and the
- * numeric properties given (keys[k] = values[k], nprops of them). */
+ * LineString feature, with a name and the numeric properties given
+ * (keys[k] = values[k], nprops of them); reprojected to WGS 84 (RFC 7946)
+ * from the CRS wkt, or as given when wkt is "". */
 gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const double *xyz, const char *name,
                           size_t nprops, const char *const *keys, const double *values);
 

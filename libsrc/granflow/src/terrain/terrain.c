@@ -426,6 +426,23 @@ double gf_polygons_area(const gf_polygons *p, size_t k)
     return area;
 }
 
+/* a PROJ string without its +towgs84=... term */
+static void proj_without_shift(const char *p, char *out, size_t n)
+{
+    size_t k = 0;
+    while (*p && k + 1 < n) {
+        if (strncmp(p, "+towgs84=", 9) == 0) {
+            while (*p && *p != ' ')
+                ++p;
+            while (*p == ' ')
+                ++p;
+            continue;
+        }
+        out[k++] = *p++;
+    }
+    out[k] = '\0';
+}
+
 int gf_crs_same(const char *wkt_a, const char *wkt_b)
 {
     if (!wkt_a || !wkt_b || !*wkt_a || !*wkt_b)
@@ -434,7 +451,23 @@ int gf_crs_same(const char *wkt_a, const char *wkt_b)
     CPLPushErrorHandler(CPLQuietErrorHandler);
     OGRSpatialReferenceH a = OSRNewSpatialReference(wkt_a), b = OSRNewSpatialReference(wkt_b);
     CPLPopErrorHandler();
-    const int same = (a && b) ? (OSRIsSame(a, b) ? 1 : 0) : -1;
+    int same = (a && b) ? (OSRIsSame(a, b) ? 1 : 0) : -1;
+    if (same == 0) {
+        /* the same projection written differently (an EPSG definition with
+         * its own axis order and datum shift against the ESRI .prj of the
+         * same grid): the same PROJ string without +towgs84 */
+        char *pa = NULL, *pb = NULL;
+        CPLPushErrorHandler(CPLQuietErrorHandler);
+        if (OSRExportToProj4(a, &pa) == OGRERR_NONE && OSRExportToProj4(b, &pb) == OGRERR_NONE && pa && pb) {
+            char qa[1024], qb[1024];
+            proj_without_shift(pa, qa, sizeof qa);
+            proj_without_shift(pb, qb, sizeof qb);
+            same = strcmp(qa, qb) == 0;
+        }
+        CPLPopErrorHandler();
+        CPLFree(pa);
+        CPLFree(pb);
+    }
     if (a)
         OSRDestroySpatialReference(a);
     if (b)
@@ -591,6 +624,20 @@ done:
 
 /*--------------------------------------------------------------- outline --*/
 
+/* The CRS of a GeoJSON layer, x = easting */
+static OGRSpatialReferenceH geojson_srs(const char *wkt)
+{
+    OGRSpatialReferenceH srs = OSRNewSpatialReference(wkt);
+    if (srs)
+        OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
+    return srs;
+}
+
+/* GeoJSON is WGS 84 longitude/latitude (RFC 7946): a layer with a CRS is
+ * reprojected to it on writing; one without (a synthetic terrain) keeps its
+ * coordinates */
+static char *rfc7946[] = {"RFC7946=YES", NULL};
+
 gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
                             double threshold, double *area)
 {
@@ -619,10 +666,8 @@ gf_status gf_raster_outline(const char *path, const gf_raster *grid, const doubl
         st = gf_fail(GF_EIO, "outline %s: %s", path, gdal_msg());
         goto done;
     }
-    if (grid->wkt && *grid->wkt) {
-        srs = OSRNewSpatialReference(grid->wkt);
-        OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
-    }
+    if (grid->wkt && *grid->wkt)
+        srs = geojson_srs(grid->wkt);
     GDALDriverH vdrv = GDALGetDriverByName("Memory"), gj = GDALGetDriverByName("GeoJSON");
     vmem = vdrv ? GDALCreate(vdrv, "", 0, 0, 0, GDT_Unknown, NULL) : NULL;
     if (!vmem || !gj) {
@@ -646,7 +691,7 @@ gf_status gf_raster_outline(const char *path, const gf_raster *grid, const doubl
         st = gf_fail(GF_EIO, "outline %s: GDAL cannot write it (%s)", path, gdal_msg());
         goto done;
     }
-    OGRLayerH ol = GDALDatasetCreateLayer(out, "affected_area", srs, wkbPolygon, NULL);
+    OGRLayerH ol = GDALDatasetCreateLayer(out, "affected_area", srs, wkbPolygon, srs ? rfc7946 : NULL);
     OGRFieldDefnH fa = OGR_Fld_Create("area_m2", OFTReal);
     OGRFieldDefnH ft = OGR_Fld_Create("threshold", OFTReal);
     OGR_L_CreateField(ol, fa, TRUE);
@@ -692,10 +737,8 @@ gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const dou
     if (!gj)
         return gf_fail(GF_EIO, "line %s: GDAL lacks the GeoJSON driver", path);
     OGRSpatialReferenceH srs = NULL;
-    if (wkt && *wkt) {
-        srs = OSRNewSpatialReference(wkt);
-        OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
-    }
+    if (wkt && *wkt)
+        srs = geojson_srs(wkt);
     unlink(path);
     CPLPushErrorHandler(CPLQuietErrorHandler);
     GDALDatasetH out = GDALCreate(gj, path, 0, 0, 0, GDT_Unknown, NULL);
@@ -705,7 +748,7 @@ gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const dou
         st = gf_fail(GF_EIO, "line %s: GDAL cannot write it (%s)", path, gdal_msg());
         goto done;
     }
-    OGRLayerH L = GDALDatasetCreateLayer(out, name, srs, wkbLineString25D, NULL);
+    OGRLayerH L = GDALDatasetCreateLayer(out, name, srs, wkbLineString25D, srs ? rfc7946 : NULL);
     OGRFieldDefnH fn = OGR_Fld_Create("name", OFTString);
     OGR_L_CreateField(L, fn, TRUE);
     OGR_Fld_Destroy(fn);
