@@ -93,7 +93,8 @@ int main(int argc, char *argv[])
         {
             FatalErrorInFunction
                 << "No field " << name << " in time " << runTime.timeName()
-                << ": run the solver with 'peakFields yes;' in system/controlDict" << exit(FatalError);
+                << ": run the solver with 'peakFields yes;' in system/controlDict (and"
+                << " reconstructPar a decomposed run first)" << exit(FatalError);
         }
         return areaScalarField(io, aMesh).primitiveField();
     };
