@@ -227,6 +227,11 @@ int main(int argc, char *argv[])
                     << ") of system/releaseDict: " << gf_error_detail() << exit(FatalIOError);
             }
             const string demCrs = terrain.getOrDefault<string>("crs", "");
+            if (demCrs.size() && !*P.wkt)
+            {
+                Info<< "    polygons " << file << " have no CRS (no .prj): taken to be in the"
+                    << " DEM's" << endl;
+            }
             if (gf_crs_same(P.wkt, demCrs.c_str()) == 0)
             {
                 gf_polygons_free(&P);
@@ -259,6 +264,24 @@ int main(int argc, char *argv[])
                     << " m (" << measured << "), plan area " << gf_polygons_area(&P, k)
                     << " m2; " << nIn[k] << " faces, terrain area " << area[k]
                     << " m2, released volume " << vol[k] << " m3" << endl;
+            }
+            // a polygon that releases nothing is a mistake (another CRS without
+            // a .prj, outside the cropped mesh, smaller than a face)
+            for (size_t k = 0; k < P.n; ++k)
+            {
+                if (nIn[k] == 0)
+                {
+                    const FixedList<scalar, 4> b({P.box[4*k], P.box[4*k + 1], P.box[4*k + 2], P.box[4*k + 3]});
+                    const boundBox mb(aMesh.mesh().bounds());
+                    gf_polygons_free(&P);
+                    FatalIOErrorInFunction(r)
+                        << "polygon " << label(k) << " of " << file << " (extent x " << b[0] << " .. "
+                        << b[2] << ", y " << b[1] << " .. " << b[3] << ") contains no face centre of"
+                        << " the area mesh (x " << mb.min().x() + offset.x() << " .. "
+                        << mb.max().x() + offset.x() << ", y " << mb.min().y() + offset.y() << " .. "
+                        << mb.max().y() + offset.y() << "): outside the meshed terrain, in another"
+                        << " CRS, or smaller than a face" << exit(FatalIOError);
+                }
             }
             gf_polygons_free(&P);
         }
