@@ -215,27 +215,29 @@ typedef struct {
     size_t n, cap;
 } zvec;
 
+/* room for one more element of size elem in the array *d of n of *cap */
+static int grow(void **d, size_t n, size_t *cap, size_t elem)
+{
+    if (n < *cap)
+        return 0;
+    const size_t c = *cap ? 2 * *cap : 64;
+    void *p = realloc(*d, c * elem);
+    if (!p)
+        return -1;
+    *d = p, *cap = c;
+    return 0;
+}
 static int dvec_push(dvec *v, double x)
 {
-    if (v->n == v->cap) {
-        const size_t c = v->cap ? 2 * v->cap : 64;
-        double *d = realloc(v->d, c * sizeof *d);
-        if (!d)
-            return -1;
-        v->d = d, v->cap = c;
-    }
+    if (grow((void **)&v->d, v->n, &v->cap, sizeof *v->d))
+        return -1;
     v->d[v->n++] = x;
     return 0;
 }
 static int zvec_push(zvec *v, size_t x)
 {
-    if (v->n == v->cap) {
-        const size_t c = v->cap ? 2 * v->cap : 64;
-        size_t *d = realloc(v->d, c * sizeof *d);
-        if (!d)
-            return -1;
-        v->d = d, v->cap = c;
-    }
+    if (grow((void **)&v->d, v->n, &v->cap, sizeof *v->d))
+        return -1;
     v->d[v->n++] = x;
     return 0;
 }
