@@ -7,7 +7,10 @@
  *    diagonal mass matrix dx/(2m+1);
  *  - local Lax–Friedrichs flux (eq. 9) with the reposing factor
  *    eta = max(M_j, M_{j+1}) on the mass dissipation (M = 0 for a cell at
- *    rest, 1 for a moving one);
+ *    rest, 1 for a moving one); where both sides move towards the same side
+ *    faster than twice their wave speed sqrt(beta h) (or one side is dry),
+ *    the upwind flux, which is the exact flux there (no Lax–Friedrichs mass
+ *    diffusion into the thin fast layer ahead of a dry front);
  *  - (k+1)-point Gauss quadrature of flux and source (eq. 11; 3 points for P2);
  *  - SSP-RK3 (section 3.2); dt = cfl dx / max(|u| + sqrt(beta h)) over every
  *    point the fluxes see (both cell ends and the Gauss points); default
