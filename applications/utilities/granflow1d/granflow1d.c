@@ -26,7 +26,10 @@
  *                 dt, limiter (moment | minmod | none; minmod is the rkdg
  *                 paper's eq. 13 with gamma), gamma (0.5), tvb_m (0 for
  *                 minmod, 1 for moment),
- *                 velocity_limiter (on | off), h_eps, h_semi
+ *                 velocity_limiter (on | off), h_eps, h_semi,
+ *                 startup_levels (0; 1..5: the first phase on grids 2^L..2
+ *                 times finer, for discontinuous initial data such as a dam
+ *                 break on a dry bed)
  *   [output]      times (list), dir (.), name (case file stem), plot (no | yes),
  *                 exact (no | riemann: exact columns for a dam | dressler: Dressler's
  *                 solution for a dam on a dry bed with chezy friction), front_h (1e-3),
@@ -425,6 +428,7 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     c.tvb_m = get_num(&d, "solver", "tvb_m", c.limiter == GF_LIMITER_MINMOD ? 0.0 : 1.0, 0.0, 1e300);
     c.h_eps = get_num(&d, "solver", "h_eps", 1e-10, 1e-300, 1.0);
     c.h_semi = get_num(&d, "solver", "h_semi", 1e-6, 1e-300, 1.0);
+    c.startup_levels = (int)get_int(&d, "solver", "startup_levels", 0, 0, 5);
 
     /* output */
     double *times = cs->times;
@@ -590,6 +594,10 @@ static void run_case(const gf1d_case *cs, gf_sh1d *s, const gf_riemann *rp, gf_d
         write_profile(cs, s, k, h, u, rp, dp);
     }
     fclose(sum);
+    if (gf_sh1d_startup_steps(s) > 0)
+        printf("start-up refinement (startup_levels = %d): %zu steps on the finer grids up to t = %g "
+               "(counted as 1 step above)\n",
+               gf_sh1d_get_config(s)->startup_levels, gf_sh1d_startup_steps(s), gf_sh1d_startup_time(s));
 
     free(h);
     free(u);

@@ -90,6 +90,15 @@ typedef struct gf_sh1d_config {
                                 mean velocities of the cell and its wet neighbours */
     /* kinetic */
     int scheme;              /* 1, 2 or 3 (kinetic paper section 3) */
+    /* both */
+    int startup_levels;      /* start-up refinement L in 0..5 (0, the default: off).  The
+                                first phase, until the waves of the initial state have
+                                crossed about 40 cells, is computed on grids 2^L, ..., 2
+                                times finer and restricted to this one, mass-exactly:
+                                the first steps of discontinuous initial data (a dam
+                                break on a dry bed) are resolved instead of smeared
+                                over a few cells, whose error a dry front keeps (issue
+                                11).  It is taken by the first gf_sh1d_step. */
 } gf_sh1d_config;
 
 /* Defaults: k = 2 with the moment limiter and the velocity bound, the rkdg
@@ -135,6 +144,12 @@ size_t gf_sh1d_steps(const gf_sh1d *s);
 /* Steps (or half steps) that were repeated as two halves because a stage
  * would have made a mean depth negative (RKDG; 0 for the kinetic schemes). */
 size_t gf_sh1d_rejected_steps(const gf_sh1d *s);
+/* Steps of the start-up refinement's finer grids (config.startup_levels),
+ * summed over its levels; 0 without it. */
+size_t gf_sh1d_startup_steps(const gf_sh1d *s);
+/* The time the start-up refinement ends at (0 without it or before the
+ * first step). */
+double gf_sh1d_startup_time(const gf_sh1d *s);
 size_t gf_sh1d_n_cells(const gf_sh1d *s);
 double gf_sh1d_dx(const gf_sh1d *s);
 double gf_sh1d_cell_centre(const gf_sh1d *s, size_t i);

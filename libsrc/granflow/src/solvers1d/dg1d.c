@@ -446,6 +446,49 @@ static gf_status fix_cells(gf_sh1d *s, dg *d, double *h, double *q)
     return GF_SUCCESS;
 }
 
+/* After new modes: limiting, positivity and dry treatment, moving flags. */
+static gf_status finish_state(gf_sh1d *s, dg *d)
+{
+    fill_ghosts(s, d, d->h, d->q);
+    limit_var(s, d, d->h);
+    limit_var(s, d, d->q);
+    gf_status st = fix_cells(s, d, d->h, d->q);
+    for (size_t c = 1; c <= s->n; ++c)
+        d->moving[c] = d->q[c * (size_t)d->m] != 0.0;
+    fill_ghosts(s, d, d->h, d->q);
+    return st;
+}
+
+/* L2 projection of the fine solver's two cells onto each coarse cell: on
+ * the coarse cell's left half xi_c = (xi_f - 1)/2, on its right half
+ * (xi_f + 1)/2; 5-point Gauss on each half is exact for the degree <= 4
+ * integrands, so the means are the fine pair's exactly (mass to round-off). */
+static gf_status dg_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
+{
+    dg *d = s->impl;
+    const dg *f = fs->impl;
+    const int M = d->m;
+    double x5[5], w5[5];
+    gf_status st = gf_gauss_legendre5(x5, w5);
+    if (st)
+        return st;
+    for (size_t c = 1; c <= s->n; ++c)
+        for (int m = 0; m < M; ++m) {
+            double sh = 0.0, sq = 0.0;
+            for (int half = 0; half < 2; ++half) {
+                const size_t fc = 2 * (c - 1) + (size_t)half + 1;
+                for (int g = 0; g < 5; ++g) {
+                    const double xc = 0.5 * (x5[g] + (half ? 1.0 : -1.0)), w = 0.5 * w5[g] * legendre(m, xc);
+                    sh += w * poly(&f->h[fc * (size_t)M], M, x5[g]);
+                    sq += w * poly(&f->q[fc * (size_t)M], M, x5[g]);
+                }
+            }
+            d->h[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sh;
+            d->q[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sq;
+        }
+    return finish_state(s, d);
+}
+
 static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
 {
     dg *d = s->impl;
@@ -472,14 +515,7 @@ static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
             d->q[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sq;
         }
     }
-    fill_ghosts(s, d, d->h, d->q);
-    limit_var(s, d, d->h);
-    limit_var(s, d, d->q);
-    gf_status st = fix_cells(s, d, d->h, d->q);
-    for (size_t c = 1; c <= s->n; ++c)
-        d->moving[c] = d->q[c * (size_t)M] != 0.0;
-    fill_ghosts(s, d, d->h, d->q);
-    return st;
+    return finish_state(s, d);
 }
 
 /* CFL step from the largest wave speed |u| + sqrt(beta h) over every point
@@ -629,5 +665,6 @@ static double dg_min_depth(const gf_sh1d *s)
 
 static const gf_sh1d_type dg_type = {
     "rkdg", dg_init, dg_free, dg_set_initial, dg_max_dt, dg_step, dg_means, dg_eval, dg_min_depth,
+    dg_restrict_from,
 };
 const gf_sh1d_type *const gf_sh1d_rkdg = &dg_type;

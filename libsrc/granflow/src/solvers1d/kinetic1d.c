@@ -131,6 +131,20 @@ static gf_status kinetic_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ct
     return GF_SUCCESS;
 }
 
+/* Cell means of the fine solver's pairs of cells. */
+static gf_status kinetic_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
+{
+    kinetic *k = s->impl;
+    const kinetic *f = fs->impl;
+    for (size_t i = 0; i < s->n; ++i) {
+        const double hm = 0.5 * (f->h[2 * i + 1] + f->h[2 * i + 2]);
+        k->h[i + 1] = hm;
+        k->q[i + 1] = hm > s->cfg.h_eps ? 0.5 * (f->q[2 * i + 1] + f->q[2 * i + 2]) : 0.0;
+    }
+    fill_ghosts(s, k->h, k->q);
+    return GF_SUCCESS;
+}
+
 static void update_beta(const gf_sh1d *s, kinetic *k)
 {
     const size_t n = s->n;
@@ -288,6 +302,6 @@ static double kinetic_min_depth(const gf_sh1d *s)
 
 static const gf_sh1d_type kinetic_type = {
     "kinetic",     kinetic_init,  kinetic_free, kinetic_set_initial, kinetic_max_dt,
-    kinetic_step,  kinetic_means, kinetic_eval,     kinetic_min_depth,
+    kinetic_step,  kinetic_means, kinetic_eval,     kinetic_min_depth, kinetic_restrict_from,
 };
 const gf_sh1d_type *const gf_sh1d_kinetic = &kinetic_type;

@@ -6,6 +6,7 @@
 
 #include <gsl/gsl_integration.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,6 +35,7 @@ void gf_sh1d_config_init(gf_sh1d_config *c)
     c->tvb_m = 1.0;
     c->velocity_limiter = 1;
     c->scheme = 3;
+    c->startup_levels = 0;
 }
 
 const gf_sh1d_type *gf_sh1d_type_lookup(const char *name)
@@ -92,6 +94,11 @@ static gf_status check_config(const gf_sh1d_config *c)
         return gf_fail(GF_EDOM, "degree = %d is outside {0, 1, 2}", c->degree);
     if (c->scheme < 1 || c->scheme > 3)
         return gf_fail(GF_EDOM, "kinetic scheme = %d is outside {1, 2, 3}", c->scheme);
+    if (c->startup_levels < 0 || c->startup_levels > 5)
+        return gf_fail(GF_EDOM, "startup_levels = %d is outside 0..5", c->startup_levels);
+    if (c->startup_levels > 0 && (c->n_cells << c->startup_levels) > 100000000)
+        return gf_fail(GF_EDOM, "startup_levels = %d needs %zu cells on the finest grid, more than 1e8",
+                       c->startup_levels, c->n_cells << c->startup_levels);
     if ((c->bc_left == GF_BC_PERIODIC) != (c->bc_right == GF_BC_PERIODIC))
         return gf_fail(GF_EINVAL, "periodic boundaries must be periodic on both sides");
     if ((st = gf_friction_check(&c->friction)))
@@ -139,10 +146,25 @@ void gf_sh1d_free(gf_sh1d *s)
 {
     if (!s)
         return;
+    gf_sh1d_free(s->startup);
     s->type->free(s);
     free(s->scratch);
     free(s);
 }
+
+/* A solver like s on 2^m times the cells (fixed time step divided alike),
+ * without start-up refinement of its own. */
+static gf_status finer(const gf_sh1d *s, int m, gf_sh1d **out)
+{
+    gf_sh1d_config c = s->cfg;
+    c.n_cells = s->n << m;
+    c.dt_fixed = s->cfg.dt_fixed / (double)(1u << m);
+    c.startup_levels = 0;
+    return gf_sh1d_alloc(s->type, &c, out);
+}
+
+/* Waves of the initial state crossing about this many cells end the start-up. */
+#define STARTUP_CELLS 40.0
 
 gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
 {
@@ -151,7 +173,82 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
     s->t = 0.0;
     s->steps = 0;
     s->rejected = 0;
-    return s->type->set_initial(s, fn, ctx);
+    s->startup_steps = 0;
+    s->t_startup = 0.0;
+    gf_sh1d_free(s->startup);
+    s->startup = NULL;
+    gf_status st = s->type->set_initial(s, fn, ctx);
+    const int L = s->cfg.startup_levels;
+    if (st || L == 0)
+        return st;
+    /* the finest grid starts from the initial data itself; its step bound
+     * gives the fastest wave speed a (|u| + sqrt(beta h)), and the start-up
+     * lasts until a dam-break fan (width 3 a t) spans STARTUP_CELLS cells */
+    if ((st = finer(s, L, &s->startup)) || (st = s->type->set_initial(s->startup, fn, ctx)))
+        return st;
+    /* this grid's initial state is the finest one's restricted, so that the
+     * mass is the same to round-off on every grid of the start-up */
+    const gf_sh1d *from = s->startup;
+    gf_sh1d *tmp = NULL;
+    for (int m = L - 1; m >= 0 && !st; --m) {
+        gf_sh1d *to = s;
+        if (m > 0 && (st = finer(s, m, &to)))
+            break;
+        st = s->type->restrict_from(to, from);
+        gf_sh1d_free(tmp);
+        tmp = to == s ? NULL : to;
+        from = to;
+    }
+    gf_sh1d_free(tmp);
+    if (st)
+        return st;
+    const double dtf = s->type->max_dt(s->startup);
+    if (!(dtf > 0.0) || !isfinite(dtf)) { /* nothing moves: no start-up */
+        gf_sh1d_free(s->startup);
+        s->startup = NULL;
+        return GF_SUCCESS;
+    }
+    const double a = s->startup->cfl * s->startup->dx / dtf;
+    s->t_startup = STARTUP_CELLS * s->dx / (3.0 * a);
+    return GF_SUCCESS;
+}
+
+/* The start-up refinement (config.startup_levels = L): the finest grid runs
+ * to t_c / 2^(L-1), is restricted to the grid twice as coarse, which runs to
+ * t_c / 2^(L-2), and so on; the grid of 2 times s's cells ends at t_c and is
+ * restricted to s.  t_c = min(t_startup, dt_max). */
+static gf_status startup(gf_sh1d *s, double dt_max)
+{
+    gf_sh1d *fine = s->startup;
+    s->startup = NULL;
+    const int L = s->cfg.startup_levels;
+    const double tc = fmin(s->t_startup, dt_max);
+    gf_status st = GF_SUCCESS;
+    for (int m = L; m >= 1 && !st; --m) {
+        const double t_end = tc / (double)(1u << (m - 1));
+        const size_t before = fine->steps;
+        if ((st = gf_sh1d_advance_to(fine, t_end)))
+            break;
+        s->startup_steps += fine->steps - before;
+        gf_sh1d *coarse = s;
+        if (m > 1 && (st = finer(s, m - 1, &coarse)))
+            break;
+        st = s->type->restrict_from(coarse, fine);
+        coarse->t = fine->t;
+        coarse->steps = fine->steps;
+        gf_sh1d_free(fine);
+        fine = coarse == s ? NULL : coarse;
+    }
+    gf_sh1d_free(fine);
+    if (st) {
+        char why[512];
+        snprintf(why, sizeof why, "%s", gf_error_detail());
+        return gf_fail(st, "%s: start-up refinement (startup_levels = %d): %s", s->type->name, L, why);
+    }
+    s->t = tc;
+    s->steps = 1;
+    s->t_startup = tc;
+    return GF_SUCCESS;
 }
 
 static gf_status check_state(const gf_sh1d *s)
@@ -170,6 +267,12 @@ gf_status gf_sh1d_step(gf_sh1d *s, double dt_max)
 {
     if (!s)
         return gf_fail(GF_EINVAL, "gf_sh1d_step: null solver");
+    if (s->startup) {
+        if (!(dt_max > 0.0))
+            return gf_fail(GF_EDOM, "%s: invalid time step bound %g at t = %g", s->type->name, dt_max, s->t);
+        gf_status st = startup(s, dt_max);
+        return st ? st : check_state(s);
+    }
     const double dt_cfl = s->type->max_dt(s);
     double dt = dt_cfl;
     if (s->cfg.dt_fixed > 0.0) {
@@ -207,6 +310,8 @@ gf_status gf_sh1d_advance_to(gf_sh1d *s, double t)
 double gf_sh1d_time(const gf_sh1d *s) { return s->t; }
 size_t gf_sh1d_steps(const gf_sh1d *s) { return s->steps; }
 size_t gf_sh1d_rejected_steps(const gf_sh1d *s) { return s->rejected; }
+size_t gf_sh1d_startup_steps(const gf_sh1d *s) { return s->startup_steps; }
+double gf_sh1d_startup_time(const gf_sh1d *s) { return s->startup ? 0.0 : s->t_startup; }
 size_t gf_sh1d_n_cells(const gf_sh1d *s) { return s->n; }
 double gf_sh1d_dx(const gf_sh1d *s) { return s->dx; }
 double gf_sh1d_cell_centre(const gf_sh1d *s, size_t i)

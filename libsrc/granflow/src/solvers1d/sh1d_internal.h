@@ -14,6 +14,10 @@ struct gf_sh1d_type {
     void (*means)(const gf_sh1d *s, double *h, double *q);
     void (*eval)(const gf_sh1d *s, size_t cell, double xi, double *h, double *q);
     double (*min_depth)(const gf_sh1d *s);
+    /* the state of `coarse` from `fine`, a solver of the same type and
+     * configuration on twice the cells: the L2 projection (cell means
+     * exactly), then the scheme's limiting as after set_initial */
+    gf_status (*restrict_from)(gf_sh1d *coarse, const gf_sh1d *fine);
 };
 
 struct gf_sh1d {
@@ -25,6 +29,10 @@ struct gf_sh1d {
     size_t rejected;             /* steps repeated with a smaller dt (positivity) */
     double *scratch;             /* 2 n: cell means for checks and diagnostics */
     void *impl;
+    gf_sh1d *startup;            /* start-up refinement: the finest grid at t = 0, taken by
+                                    the first step; NULL otherwise */
+    double t_startup;            /* its end time (set by set_initial) */
+    size_t startup_steps;
 };
 
 /* Inclination and curvature at x (constant zeta when no topography). */
