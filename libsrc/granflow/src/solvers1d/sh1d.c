@@ -166,6 +166,27 @@ static gf_status finer(const gf_sh1d *s, int m, gf_sh1d **out)
 /* Waves of the initial state crossing about this many cells end the start-up. */
 #define STARTUP_CELLS 40.0
 
+/* One level down the start-up refinement: `fine` (2^m times s's cells)
+ * restricted to a new grid of 2^(m-1) times s's cells, or to s itself for
+ * m == 1, with fine's time and step count; *out is that grid.  `fine` is
+ * left to the caller. */
+static gf_status restrict_level(gf_sh1d *s, const gf_sh1d *fine, int m, gf_sh1d **out)
+{
+    gf_sh1d *to = s;
+    gf_status st;
+    if (m > 1 && (st = finer(s, m - 1, &to)))
+        return st;
+    if ((st = s->type->restrict_from(to, fine))) {
+        if (to != s)
+            gf_sh1d_free(to);
+        return st;
+    }
+    to->t = fine->t;
+    to->steps = fine->steps;
+    *out = to;
+    return GF_SUCCESS;
+}
+
 gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
 {
     if (!s || !fn)
@@ -177,24 +198,22 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
     s->t_startup = 0.0;
     gf_sh1d_free(s->startup);
     s->startup = NULL;
-    gf_status st = s->type->set_initial(s, fn, ctx);
     const int L = s->cfg.startup_levels;
-    if (st || L == 0)
-        return st;
+    if (L == 0)
+        return s->type->set_initial(s, fn, ctx);
     /* the finest grid starts from the initial data itself; its step bound
      * gives the fastest wave speed a (|u| + sqrt(beta h)), and the start-up
      * lasts until a dam-break fan (width 3 a t) spans STARTUP_CELLS cells */
+    gf_status st;
     if ((st = finer(s, L, &s->startup)) || (st = s->type->set_initial(s->startup, fn, ctx)))
         return st;
     /* this grid's initial state is the finest one's restricted, so that the
      * mass is the same to round-off on every grid of the start-up */
     const gf_sh1d *from = s->startup;
     gf_sh1d *tmp = NULL;
-    for (int m = L - 1; m >= 0 && !st; --m) {
-        gf_sh1d *to = s;
-        if (m > 0 && (st = finer(s, m, &to)))
-            break;
-        st = s->type->restrict_from(to, from);
+    for (int m = L; m >= 1 && !st; --m) {
+        gf_sh1d *to = NULL;
+        st = restrict_level(s, from, m, &to);
         gf_sh1d_free(tmp);
         tmp = to == s ? NULL : to;
         from = to;
@@ -230,12 +249,8 @@ static gf_status startup(gf_sh1d *s, double dt_max)
         if ((st = gf_sh1d_advance_to(fine, t_end)))
             break;
         s->startup_steps += fine->steps - before;
-        gf_sh1d *coarse = s;
-        if (m > 1 && (st = finer(s, m - 1, &coarse)))
-            break;
-        st = s->type->restrict_from(coarse, fine);
-        coarse->t = fine->t;
-        coarse->steps = fine->steps;
+        gf_sh1d *coarse = NULL;
+        st = restrict_level(s, fine, m, &coarse);
         gf_sh1d_free(fine);
         fine = coarse == s ? NULL : coarse;
     }
