@@ -17,9 +17,10 @@ typedef struct strip_mesh {
     size_t nx, ny;
     double s0, s1, y0, y1;
     double *node;          /* (nx+1)(ny+1) x 3 */
-    double *area, *centre, *normal, *length, *enormal, *ecentre;
+    double *area, *centre, *normal, *length, *enormal, *ecentre, *epoints;
     int *owner, *neighbour, *kind;
     double *s_of_face;     /* arc-length coordinate of each face centre */
+    int kinds[4];
     gf_surface_mesh m;
 } strip_mesh;
 
@@ -41,10 +42,14 @@ static inline double sm_norm(double *a)
 }
 
 /* Edge e from node p to q with owner o (neighbour nb, kind kd): length,
- * midpoint and the unit normal t x nn, oriented away from the owner's centre. */
+ * midpoint and the unit normal t x nn (nn the mean normal of its faces),
+ * oriented away from the owner's centre. */
 static inline void sm_edge(struct strip_mesh *sm, size_t e, const double *p, const double *q, int o, int nb,
-                           int kd, const double *nn)
+                           int kd)
 {
+    double nn[3];
+    for (int k = 0; k < 3; ++k)
+        nn[k] = sm->normal[3 * o + k] + (nb >= 0 ? sm->normal[3 * nb + k] : 0.0);
     double t[3], v[3], r[3];
     sm_sub(q, p, t);
     sm->length[e] = sm_norm(t);
@@ -55,7 +60,74 @@ static inline void sm_edge(struct strip_mesh *sm, size_t e, const double *p, con
     if (v[0] * r[0] + v[1] * r[1] + v[2] * r[2] < 0)
         v[0] = -v[0], v[1] = -v[1], v[2] = -v[2];
     memcpy(sm->enormal + 3 * e, v, sizeof v);
+    memcpy(sm->epoints + 6 * e, p, 3 * sizeof *p);
+    memcpy(sm->epoints + 6 * e + 3, q, 3 * sizeof *q);
     sm->owner[e] = o, sm->neighbour[e] = nb, sm->kind[e] = kd;
+}
+
+/* Face and edge geometry from the nodes (planar-quad formulas: centre the
+ * mean of the corners, normal and area from the diagonals; edges with the
+ * mean normal of their faces). */
+static inline void strip_geometry(strip_mesh *sm)
+{
+    const size_t nx = sm->nx, ny = sm->ny;
+    const double s0 = sm->s0, ds = (sm->s1 - sm->s0) / (double)nx;
+    const int *kinds = sm->kinds;
+#define NODE(i, j) (sm->node + 3 * ((j) * (nx + 1) + (i)))
+    for (size_t j = 0; j < ny; ++j)
+        for (size_t i = 0; i < nx; ++i) {
+            const size_t f = j * nx + i;
+            const double *a = NODE(i, j), *b = NODE(i + 1, j), *c = NODE(i + 1, j + 1), *d = NODE(i, j + 1);
+            double d1[3], d2[3], n[3];
+            sm_sub(c, a, d1);
+            sm_sub(d, b, d2);
+            sm_cross(d1, d2, n);
+            sm->area[f] = 0.5 * sm_norm(n);
+            memcpy(sm->normal + 3 * f, n, sizeof n);
+            for (int k = 0; k < 3; ++k)
+                sm->centre[3 * f + k] = 0.25 * (a[k] + b[k] + c[k] + d[k]);
+            sm->s_of_face[f] = s0 + ds * ((double)i + 0.5);
+        }
+    size_t e = 0;
+    /* edges of constant s: between (i-1, j) and (i, j), from node (i, j) to (i, j+1) */
+    for (size_t j = 0; j < ny; ++j)
+        for (size_t i = 0; i <= nx; ++i, ++e) {
+            const double *p = NODE(i, j), *q = NODE(i, j + 1);
+            int o, nb, kd = GF_EDGE_INTERNAL;
+            if (i == 0)
+                o = (int)(j * nx), nb = -1, kd = kinds[0];
+            else if (i == nx)
+                o = (int)(j * nx + nx - 1), nb = -1, kd = kinds[1];
+            else
+                o = (int)(j * nx + i - 1), nb = (int)(j * nx + i);
+            sm_edge(sm, e, p, q, o, nb, kd);
+        }
+    /* edges of constant y: between (i, j-1) and (i, j), from node (i, j) to (i+1, j) */
+    for (size_t j = 0; j <= ny; ++j)
+        for (size_t i = 0; i < nx; ++i, ++e) {
+            const double *p = NODE(i, j), *q = NODE(i + 1, j);
+            int o, nb, kd = GF_EDGE_INTERNAL;
+            if (j == 0)
+                o = (int)i, nb = -1, kd = kinds[2];
+            else if (j == ny)
+                o = (int)((ny - 1) * nx + i), nb = -1, kd = kinds[3];
+            else
+                o = (int)((j - 1) * nx + i), nb = (int)(j * nx + i);
+            sm_edge(sm, e, p, q, o, nb, kd);
+        }
+#undef NODE
+}
+
+/* Add w(x, y) to every node's height and recompute the geometry: a doubly
+ * curved surface (its quads no longer planar); s_of_face stays the
+ * unbent arc length. */
+static inline void strip_mesh_warp(strip_mesh *sm, double (*w)(double x, double y, void *ctx), void *ctx)
+{
+    for (size_t i = 0; i < (sm->nx + 1) * (sm->ny + 1); ++i) {
+        double *p = sm->node + 3 * i;
+        p[2] += w(p[0], p[1], ctx);
+    }
+    strip_geometry(sm);
 }
 
 /* kinds: edges at s0, s1, y0, y1 */
@@ -86,68 +158,21 @@ static inline strip_mesh *strip_mesh_new(size_t nx, size_t ny, double s0, double
         }
     free(xs);
     free(zs);
+    memcpy(sm->kinds, kinds, sizeof sm->kinds);
     sm->area = malloc(nf * sizeof(double));
     sm->centre = malloc(3 * nf * sizeof(double));
     sm->normal = malloc(3 * nf * sizeof(double));
     sm->s_of_face = malloc(nf * sizeof(double));
-#define NODE(i, j) (sm->node + 3 * ((j) * (nx + 1) + (i)))
-    for (size_t j = 0; j < ny; ++j)
-        for (size_t i = 0; i < nx; ++i) {
-            const size_t f = j * nx + i;
-            const double *a = NODE(i, j), *b = NODE(i + 1, j), *c = NODE(i + 1, j + 1), *d = NODE(i, j + 1);
-            double d1[3], d2[3], n[3];
-            sm_sub(c, a, d1);
-            sm_sub(d, b, d2);
-            sm_cross(d1, d2, n);
-            sm->area[f] = 0.5 * sm_norm(n);
-            memcpy(sm->normal + 3 * f, n, sizeof n);
-            for (int k = 0; k < 3; ++k)
-                sm->centre[3 * f + k] = 0.25 * (a[k] + b[k] + c[k] + d[k]);
-            sm->s_of_face[f] = s0 + ds * ((double)i + 0.5);
-        }
     sm->owner = malloc(ne * sizeof(int));
     sm->neighbour = malloc(ne * sizeof(int));
     sm->kind = malloc(ne * sizeof(int));
     sm->length = malloc(ne * sizeof(double));
     sm->enormal = malloc(3 * ne * sizeof(double));
     sm->ecentre = malloc(3 * ne * sizeof(double));
-    size_t e = 0;
-    /* edges of constant s: between (i-1, j) and (i, j), from node (i, j) to (i, j+1) */
-    for (size_t j = 0; j < ny; ++j)
-        for (size_t i = 0; i <= nx; ++i, ++e) {
-            const double *p = NODE(i, j), *q = NODE(i, j + 1);
-            int o, nb, kd = GF_EDGE_INTERNAL;
-            if (i == 0)
-                o = (int)(j * nx), nb = -1, kd = kinds[0];
-            else if (i == nx)
-                o = (int)(j * nx + nx - 1), nb = -1, kd = kinds[1];
-            else
-                o = (int)(j * nx + i - 1), nb = (int)(j * nx + i);
-            double nn[3];
-            const double *no = sm->normal + 3 * o;
-            if (nb >= 0)
-                for (int k = 0; k < 3; ++k)
-                    nn[k] = no[k] + sm->normal[3 * nb + k];
-            else
-                memcpy(nn, no, sizeof nn);
-            sm_edge(sm, e, p, q, o, nb, kd, nn);
-        }
-    /* edges of constant y: between (i, j-1) and (i, j), from node (i, j) to (i+1, j) */
-    for (size_t j = 0; j <= ny; ++j)
-        for (size_t i = 0; i < nx; ++i, ++e) {
-            const double *p = NODE(i, j), *q = NODE(i + 1, j);
-            int o, nb, kd = GF_EDGE_INTERNAL;
-            if (j == 0)
-                o = (int)i, nb = -1, kd = kinds[2];
-            else if (j == ny)
-                o = (int)((ny - 1) * nx + i), nb = -1, kd = kinds[3];
-            else
-                o = (int)((j - 1) * nx + i), nb = (int)(j * nx + i);
-            sm_edge(sm, e, p, q, o, nb, kd, sm->normal + 3 * o);
-        }
-#undef NODE
+    sm->epoints = malloc(6 * ne * sizeof(double));
+    strip_geometry(sm);
     gf_surface_mesh m = {nf, 0, ne, sm->area, sm->centre, sm->normal, sm->owner, sm->neighbour,
-                         sm->kind, sm->length, sm->enormal, sm->ecentre};
+                         sm->kind, sm->length, sm->enormal, sm->ecentre, sm->epoints};
     sm->m = m;
     return sm;
 }
@@ -156,7 +181,7 @@ static inline void strip_mesh_free(strip_mesh *sm)
 {
     if (!sm)
         return;
-    void *p[] = {sm->node, sm->area, sm->centre, sm->normal, sm->length, sm->enormal, sm->ecentre,
+    void *p[] = {sm->node, sm->area, sm->centre, sm->normal, sm->length, sm->enormal, sm->ecentre, sm->epoints,
                  sm->owner, sm->neighbour, sm->kind, sm->s_of_face};
     for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
         free(p[i]);
@@ -180,6 +205,24 @@ static inline long surface_advance(gf_surface *s, double *t, double t_end)
         ++n;
     }
     return n;
+}
+
+/* A lake with a horizontal free surface eta = (lowest face centre) + depth:
+ * h = (eta - z_f) / n_z,f, the normal thickness over each face's plane, so
+ * that the basal pressure rho a h (a = -g.n, g vertical) is the hydrostatic
+ * rho g (eta - z_f); 0 above the shoreline (allocated, one value per face). */
+static inline double *strip_lake(const strip_mesh *sm, double depth)
+{
+    const size_t nf = sm->m.n_faces;
+    double zmin = HUGE_VAL;
+    for (size_t f = 0; f < nf; ++f)
+        zmin = fmin(zmin, sm->centre[3 * f + 2]);
+    double *h = malloc(nf * sizeof *h);
+    for (size_t f = 0; f < nf; ++f) {
+        const double d = zmin + depth - sm->centre[3 * f + 2];
+        h[f] = d > 0.0 ? d / sm->normal[3 * f + 2] : 0.0;
+    }
+    return h;
 }
 
 #endif

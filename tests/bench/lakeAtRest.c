@@ -1,14 +1,15 @@
 /*
  * Lake at rest under the explicit surface scheme (granflow/surface.h): a
- * diagnostic, not a test (nothing is asserted).  The explicit scheme is not
- * yet well-balanced for frictionless lakes (issue 12); this program measures
- * by how much.
+ * diagnostic, not a test (nothing is asserted; test_surface's
+ * lake_at_rest_with_shorelines asserts it to 1e-12).  It prints how far a
+ * frictionless lake drifts: round-off only, since the static edges keep the
+ * basal pressure hydrostatic (surface.h).
  *
  * On the structured strip of tests/surface_mesh.h (20 m along the slope,
  * 4 faces across, walls all round), no friction, a lake with a horizontal
  * free surface: h = (eta - z_f) / n_z,f, the normal thickness of a
- * horizontal surface over each face's plane (finite-area paper: a h grad h
- * balances h g_s at rest, a = -g.n).  Scenes:
+ * horizontal surface over each face's plane (strip_lake: the basal
+ * pressure is rho g (eta - z_f)).  Scenes:
  *   plane:  a 20 deg plane, the lake 1 m deep (vertically) at the low wall,
  *           its shoreline on the slope;
  *   valley: 30 deg down to 30 deg up (zeta = 30 deg tanh((10 - s)/3)), the
@@ -58,15 +59,7 @@ int main(void)
                 return 1;
             }
             const size_t nf = sm->m.n_faces;
-            double zmin = HUGE_VAL;
-            for (size_t f = 0; f < nf; ++f)
-                zmin = fmin(zmin, sm->centre[3 * f + 2]);
-            const double eta = zmin + (scene == 2 ? 10.0 : 1.0);
-            double *h0 = malloc(nf * sizeof *h0);
-            for (size_t f = 0; f < nf; ++f) {
-                const double d = eta - sm->centre[3 * f + 2];
-                h0[f] = d > 0.0 ? d / sm->normal[3 * f + 2] : 0.0;
-            }
+            double *h0 = strip_lake(sm, scene == 2 ? 10.0 : 1.0);
             if (gf_surface_set_state(s, h0, NULL)) {
                 fprintf(stderr, "gf_lake_at_rest: %s\n", gf_error_detail());
                 return 1;

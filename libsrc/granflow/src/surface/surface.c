@@ -29,7 +29,10 @@ struct gf_surface {
     /* accumulators per owned face */
     double *acc_h, *acc_m, *acc_pn;
     /* per-edge fluxes */
-    double *fh, *fm, *fp, *dpn; /* dpn: extra pressure on the neighbour side (rest edges) */
+    double *fh, *fm, *fp, *dpn; /* dpn: extra pressure on the neighbour side (static edges) */
+    double *dmn;      /* extra momentum pressure along nu on the neighbour side (static edges) */
+    double *ahyd;     /* hydrostatic normal acceleration max(0, -g.n) per face (nt) */
+    unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt) */
     unsigned char *first;
     double *edge_vol, *edge_vol_step;
     double *inflow; /* per edge: h, u[3] */
@@ -44,6 +47,8 @@ struct gf_surface {
     int active_fresh; /* the active set matches the state (built since the last change) */
     double h_scale;
     double u_slow; /* speed below which a face next to one at rest is slow: dt |g| */
+    int startup_pending; /* the next step begins the start-up on refined meshes (startup_levels) */
+    struct gf_startup *su; /* the running start-up, or NULL */
     gf_surface_stats st;
 };
 
@@ -81,13 +86,16 @@ void gf_surface_config_default(gf_surface_config *c)
     gf_friction_init(&c->friction, "none");
 }
 
+static void startup_free(gf_surface *s);
+
 void gf_surface_free(gf_surface *s)
 {
     if (!s)
         return;
+    startup_free(s);
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->h,        s->mom,  s->h1,     s->m1,
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
-                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn,       s->first, s->edge_vol,
+                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn, s->dmn, s->ahyd, s->stat, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
@@ -107,6 +115,9 @@ static gf_status check_config(const gf_surface_config *c)
         return st;
     if (c->order != 1 && c->order != 2)
         return gf_fail(GF_EDOM, "surface scheme: order = %d; allowed: 1 or 2", c->order);
+    if (c->startup_levels < 0 || c->startup_levels > 3)
+        return gf_fail(GF_EDOM, "surface scheme: startup_levels = %d; allowed: 0 (off) to 3 (4^3 faces per "
+                                "quadrilateral)", c->startup_levels);
     if (!c->friction.type)
         return gf_fail(GF_EINVAL, "surface scheme: friction law not initialised");
     return gf_friction_check(&c->friction);
@@ -186,6 +197,10 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     gf_status st;
     if ((st = check_config(cfg)) || (st = check_mesh(mesh)))
         return st;
+    if (cfg->startup_levels > 0 && (!mesh->edge_points || mesh->n_ghosts > 0))
+        return gf_fail(GF_EINVAL, "surface scheme: startup_levels = %d needs %s", cfg->startup_levels,
+                       mesh->n_ghosts > 0 ? "a serial run (the mesh has ghost faces of other ranks)"
+                                          : "the mesh's edge_points (the end points of each edge)");
     gf_surface *s = calloc(1, sizeof *s);
     if (!s)
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
@@ -211,6 +226,9 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->fm = calloc(3 * ne + 1, sizeof *s->fm);
     s->fp = calloc(ne + 1, sizeof *s->fp);
     s->dpn = calloc(ne + 1, sizeof *s->dpn);
+    s->dmn = calloc(ne + 1, sizeof *s->dmn);
+    s->ahyd = calloc(nt, sizeof *s->ahyd);
+    s->stat = calloc(nt, 1);
     s->first = calloc(ne + 1, 1);
     s->edge_vol = calloc(ne + 1, sizeof *s->edge_vol);
     s->edge_vol_step = calloc(ne + 1, sizeof *s->edge_vol_step);
@@ -225,7 +243,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
-        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn ||
+        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn || !s->dmn || !s->ahyd || !s->stat ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
@@ -261,7 +279,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     free(fill);
     for (size_t f = 0; f < nt; ++f) {
         const double gn = -dot3(cfg->g, mesh->normal + 3 * f);
-        s->a[f] = gn > 0.0 ? gn : 0.0;
+        s->a[f] = s->ahyd[f] = gn > 0.0 ? gn : 0.0;
     }
     if ((st = build_frames(s))) {
         gf_surface_free(s);
@@ -296,6 +314,7 @@ static gf_status load_state(gf_surface *s, const double *h, const double *mom, c
     const size_t nf = s->m.n_faces;
     s->active_fresh = 0;
     s->h_scale = 0.0;
+    s->startup_pending = !exact && s->c.startup_levels > 0;
     for (size_t f = 0; f < nf; ++f) {
         if (!isfinite(h[f]) || h[f] < 0.0)
             return gf_fail(GF_EDOM, "surface scheme: thickness h = %g in face %zu (must be finite, >= 0)", h[f],
@@ -337,6 +356,7 @@ static gf_status load_state(gf_surface *s, const double *h, const double *mom, c
 
 gf_status gf_surface_set_state(gf_surface *s, const double *h, const double *mom)
 {
+    startup_free(s);
     return load_state(s, h, mom, NULL, 0);
 }
 
@@ -344,6 +364,7 @@ gf_status gf_surface_restore(gf_surface *s, const double *h, const double *mom, 
 {
     if (!h || !mom || !a)
         return gf_fail(GF_EINVAL, "gf_surface_restore: h, momentum and normal acceleration are all needed");
+    startup_free(s);
     return load_state(s, h, mom, a, 1);
 }
 
@@ -639,60 +660,77 @@ static inline double hll(double hl, double ul, double vl, double al, double hr, 
     return gmax(-sl, sr);
 }
 
-/* Flux of edge e from the stage state (H, M): fh, fm (3D), fp (pressure
+/* Both sides of internal edge (o, n) slow: |u| < dt |g| (at rest included;
+ * a dry face has u = 0). */
+static inline int static_edge(const gf_surface *s, int o, int n)
+{
+    const double *uo = s->u + 3 * o, *un = s->u + 3 * n, us2 = s->u_slow * s->u_slow;
+    return dot3(uo, uo) < us2 && dot3(un, un) < us2;
+}
+
+/* Pressure a_f h_f delta / 2 that face f in the hydrostatic mode feels at
+ * its edge to face N: delta = h_N - h_N^eq, h_N^eq the thickness whose basal
+ * pressure continues f's hydrostatically, a_N h_N^eq = a_f h_f + g.(x_N -
+ * x_f) (0 where that is <= 0: a shoreline), a = -g.n. */
+static inline double hydrostatic_pressure(const gf_surface *s, const double *H, int f, int N)
+{
+    const double *xf = s->m.centre + 3 * f, *xn = s->m.centre + 3 * N, *g = s->c.g;
+    const double P = s->ahyd[f] * H[f] + g[0] * (xn[0] - xf[0]) + g[1] * (xn[1] - xf[1]) + g[2] * (xn[2] - xf[2]);
+    const double heq = P > 0.0 && s->ahyd[N] > 0.0 ? P / s->ahyd[N] : 0.0;
+    return 0.5 * s->ahyd[f] * H[f] * (H[N] - heq);
+}
+
+/* Flux of edge e from the stage state (thickness H, velocities s->u): fh, fm (3D), fp (pressure
  * along nu); per unit length. */
-static void edge_flux(gf_surface *s, const double *H, const double *M, int e, int order2)
+static void edge_flux(gf_surface *s, const double *H, int e, int order2)
 {
     const gf_surface_mesh *m = &s->m;
     const double *fr = s->frame + 12 * e, *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
     const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
     const unsigned st = s->stamp;
     double *fm = s->fm + 3 * e;
-    double hl, ul[3], F[3], fpress;
-    const int rest_l = M[3 * o] == 0.0 && M[3 * o + 1] == 0.0 && M[3 * o + 2] == 0.0;
+    double hl, ul[3], F[3], fpress, un_b = 0.0, ut_b = 0.0;
     if (kind == GF_EDGE_INTERNAL) {
-        const int rest = rest_l && M[3 * n] == 0.0 && M[3 * n + 1] == 0.0 && M[3 * n + 2] == 0.0;
-        if (rest) {
-            /* Both sides at rest: no mass crosses, and each side feels the
-             * pressure a_f h_f h_N / 2.  It equals a h^2/2 (the HLL pressure)
-             * between equal states, and its sum over a face's edges is
-             * A a_f h_f grad h (Green–Gauss, sum_e nu_e L_e = 0), so the
-             * force on a face at rest is A a_f h_f (grad h - g_s/a_f):
-             * friction holds a face exactly when the discrete free-surface
-             * slope is admissible, however thin the face (kinetic paper,
-             * Def. 1, in 2D).  Momentum is not exchanged conservatively
-             * across such an edge; nothing moves there. */
-            const double po = 0.5 * s->a[o] * H[o] * H[n], pn = 0.5 * s->a[n] * H[n] * H[o];
-            s->fh[e] = 0.0;
-            s->fp[e] = po;
-            s->dpn[e] = pn - po;
-            for (int k = 0; k < 3; ++k)
-                fm[k] = po * nu[k];
-            return;
-        }
-        if (H[o] > s->c.h_dry && H[n] > s->c.h_dry) {
-            /* Two wet faces that are both slow (|u| < dt |g|, at most what
-             * one step of gravity gives; at rest included): the kinetic
-             * paper's Scheme 3 idea on the surface.  HLL's mass diffusion
+        if (static_edge(s, o, n)) {
+            /* Both sides slow (|u| < dt |g|, at most what one step of
+             * gravity gives; at rest included).  HLL's mass diffusion
              * s_L s_R (h_R - h_L), of the size of the wave speed, would keep
              * moving material that friction holds (deposits creeping at
              * 1e-4 m/s); instead the mass flux is the donor flux of the mean
-             * normal velocity and each side feels the pressure of the rest
-             * edges above. */
-            const double *uo = s->u + 3 * o, *un = s->u + 3 * n, us2 = s->u_slow * s->u_slow;
-            if (dot3(uo, uo) < us2 && dot3(un, un) < us2) {
-                const double vo = dot3(uo, nul), vn = dot3(un, nur), vm = 0.5 * (vo + vn);
-                const int up = vm >= 0.0 ? o : n;
-                const double *uu = s->u + 3 * up, unu = up == o ? vo : vn, ut = dot3(uu, t);
-                const double po = 0.5 * s->a[o] * H[o] * H[n], pn = 0.5 * s->a[n] * H[n] * H[o];
-                const double fh = H[up] * vm;
-                s->fh[e] = fh;
-                s->fp[e] = po;
-                s->dpn[e] = pn - po;
-                for (int k = 0; k < 3; ++k)
-                    fm[k] = fh * (unu * nu[k] + ut * t[k]) + po * nu[k];
-                return;
-            }
+             * normal velocity (the kinetic paper's Scheme 3 idea on the
+             * surface; zero at rest) and each side feels its own pressure:
+             *  - a face in the hydrostatic mode (every edge static,
+             *    gf_surface.stat) feels a_f h_f delta / 2, delta = h_N -
+             *    h_N^eq, where h_N^eq = max(0, a_f h_f + g.(x_N - x_f)) / a_N
+             *    is the thickness of the neighbour that continues the
+             *    face's basal pressure hydrostatically (a = -g.n); the face
+             *    gets no pointwise gravity, so a lake whose basal pressure
+             *    is that of one horizontal free surface (shorelines and
+             *    walls included) feels exactly no force.  Summed over a
+             *    face, -A h (grad(a h) - g_s) to first order (walls: the
+             *    hydrostatic ghost, delta = 0);
+             *  - any other face feels a_f h_f h_N / 2 with its pointwise
+             *    gravity: summed, A a_f h_f grad h (Green–Gauss).
+             * Either way friction holds a pile whose discrete surface slope
+             * is admissible, however thin the face (kinetic paper, Def. 1,
+             * in 2D).  p_b's lateral feedback takes a_f h_f h_N / 2 on both.
+             * Momentum is not exchanged conservatively across such an edge;
+             * nothing moves there faster than dt |g|. */
+            const double *uo = s->u + 3 * o, *un = s->u + 3 * n;
+            const double vo = dot3(uo, nul), vn = dot3(un, nur), vm = 0.5 * (vo + vn);
+            const int up = vm >= 0.0 ? o : n;
+            const double *uu = s->u + 3 * up, unu = up == o ? vo : vn, ut = dot3(uu, t);
+            const double po = 0.5 * s->a[o] * H[o] * H[n], pn = 0.5 * s->a[n] * H[n] * H[o];
+            const double qo = s->stat[o] ? hydrostatic_pressure(s, H, o, n) : po;
+            const double qn = s->stat[n] ? hydrostatic_pressure(s, H, n, o) : pn;
+            const double fh = H[up] * vm;
+            s->fh[e] = fh;
+            s->fp[e] = po;
+            s->dpn[e] = pn - po;
+            s->dmn[e] = qn - qo;
+            for (int k = 0; k < 3; ++k)
+                fm[k] = fh * (unu * nu[k] + ut * t[k]) + qo * nu[k];
+            return;
         }
         double hr, ur[3];
         const int rec = order2 && !s->first[e];
@@ -704,6 +742,7 @@ static void edge_flux(gf_surface *s, const double *H, const double *M, int e, in
     } else {
         side_state(s, H, o, e, order2 && !s->first[e], &hl, ul);
         const double un = dot3(ul, nul), ut = dot3(ul, t), p = 0.5 * s->a[o] * hl * hl;
+        un_b = un, ut_b = ut;
         if (kind == GF_EDGE_WALL) { /* mirror state: no mass, pressure and reflection */
             hll(hl, un, ut, s->a[o], hl, -un, ut, s->a[o], F, &fpress);
             F[0] = 0.0;
@@ -723,7 +762,15 @@ static void edge_flux(gf_surface *s, const double *H, const double *M, int e, in
     }
     s->fh[e] = F[0];
     s->fp[e] = fpress;
-    s->dpn[e] = 0.0;
+    s->dpn[e] = s->dmn[e] = 0.0;
+    if (kind != GF_EDGE_INTERNAL && s->stat[o]) {
+        /* a wall (or an outflow edge nothing leaves) of a face in the
+         * hydrostatic mode: the hydrostatic ghost (delta = 0), no force
+         * along the surface; fpress still enters p_b */
+        for (int k = 0; k < 3; ++k)
+            fm[k] = F[0] * (un_b * nu[k] + ut_b * t[k]);
+        return;
+    }
     for (int k = 0; k < 3; ++k)
         fm[k] = F[1] * nu[k] + F[2] * t[k];
 }
@@ -751,9 +798,10 @@ static void accumulate(gf_surface *s)
         if (n >= 0 && (size_t)n < nf && s->mark_f[n] == st) {
             const double dp = s->dpn[e];
             s->acc_h[n] -= L * s->fh[e];
+            const double dq = s->dmn[e];
             s->acc_pn[n] -= L * (s->fp[e] + dp) * dot3(nu, m->normal + 3 * n);
             for (int k = 0; k < 3; ++k)
-                s->acc_m[3 * n + k] -= L * (fm[k] + dp * nu[k]);
+                s->acc_m[3 * n + k] -= L * (fm[k] + dq * nu[k]);
         }
     }
 }
@@ -769,6 +817,18 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     for (size_t i = 0; i < s->n_act_f; ++i)
         velocity(s, H, M, s->act_f[i], s->u + 3 * s->act_f[i]);
     s->u_slow = dt * s->gmag;
+    /* hydrostatic mode: every edge of the face static (internal edges with
+     * both sides slow, walls, outflow edges; not inflow edges) */
+    for (size_t i = 0; i < s->n_act_f; ++i)
+        s->stat[s->act_f[i]] = 1;
+    for (size_t i = 0; i < s->n_act_e; ++i) {
+        const int e = s->act_e[i], o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
+        if (kind == GF_EDGE_INFLOW || (kind == GF_EDGE_INTERNAL && !static_edge(s, o, n))) {
+            s->stat[o] = 0;
+            if (n >= 0)
+                s->stat[n] = 0;
+        }
+    }
     const int order2 = c->order == 2;
     if (order2) {
         gradients(s, H);
@@ -778,7 +838,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     for (size_t i = 0; i < s->n_act_e; ++i)
         s->first[s->act_e[i]] = 0;
     for (size_t i = 0; i < s->n_act_e; ++i)
-        edge_flux(s, H, M, s->act_e[i], order2);
+        edge_flux(s, H, s->act_e[i], order2);
     const double tiny = 1e-13 * s->h_scale;
     for (int pass = 0;; ++pass) {
         accumulate(s);
@@ -795,7 +855,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
                     if (!s->first[e]) {
                         s->first[e] = 1;
                         s->st.first_order_edges++;
-                        edge_flux(s, H, M, e, order2);
+                        edge_flux(s, H, e, order2);
                     }
                 }
                 bad = 1;
@@ -824,8 +884,9 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         /* div F per unit area; p_b/rho from the normal projection, eq. (33) */
         const double *acc = s->acc_m + 3 * f;
         const double ndiv = dot3(acc, nf) * rA, npress = s->acc_pn[f] * rA;
+        const int hs = s->stat[f]; /* hydrostatic mode: gravity along the surface is in the edge pressures */
         double pbr = -h * dot3(c->g, nf);
-        if (c->centrifugal)
+        if (c->centrifugal && !hs)
             pbr += ndiv - npress;
         if (c->lateral_feedback)
             pbr += npress;
@@ -835,7 +896,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
             s->pb[f] = c->rho * pbr;
         double ms[3];
         for (int k = 0; k < 3; ++k)
-            ms[k] = M[3 * f + k] + dt * (h * c->g[k] - acc[k] * rA);
+            ms[k] = M[3 * f + k] + dt * ((hs ? 0.0 : h * c->g[k]) - acc[k] * rA);
         const double mn = dot3(ms, nf);
         for (int k = 0; k < 3; ++k)
             ms[k] -= mn * nf[k]; /* tangential part, eq. (35) */
@@ -923,12 +984,240 @@ static gf_status step_split(gf_surface *s, double dt, int depth)
     return step_split(s, 0.5 * dt, depth + 1);
 }
 
+/* The start-up on refined meshes (gf_surface_config.startup_levels; see
+ * granflow/surface.h).  Level l is the mesh refined l times; its faces map
+ * to level l-1 through parent_face and to this mesh through froot, its edges
+ * to this mesh's edges through eroot (-1 inside a face).  Level cl runs
+ * until t_end(cl) = t_s / 2^(cl-1) and is then restricted to level cl-1;
+ * level 1 ends at t_s on this mesh.  Between the caller's steps this mesh
+ * holds the restriction of the running level (writes, peaks, volumes). */
+struct gf_startup {
+    int L, cl;
+    double t_s, tau;
+    gf_surface_refined *lev[4];
+    gf_surface *sol[4];
+    int *froot[4], *eroot[4];
+    double *base_vol;       /* this mesh's edge volumes when the start-up began */
+    double *hc, *mc;        /* restriction scratch (finest size) */
+    unsigned long steps, updates; /* of the finished levels */
+    unsigned long counted;  /* face updates already added to this mesh's stats */
+};
+
+static void startup_free(gf_surface *s)
+{
+    struct gf_startup *u = s->su;
+    if (!u)
+        return;
+    for (int l = 1; l <= 3; ++l) {
+        gf_surface_free(u->sol[l]);
+        gf_surface_refined_free(u->lev[l]);
+        free(u->froot[l]);
+        free(u->eroot[l]);
+    }
+    free(u->base_vol), free(u->hc), free(u->mc);
+    free(u);
+    s->su = NULL;
+}
+
+/* t_s = 20 d / w (0 when nothing is wet) */
+static double startup_time(gf_surface *s)
+{
+    double d = HUGE_VAL, w = 0.0;
+    for (size_t f = 0; f < s->m.n_faces; ++f)
+        if (s->h[f] > s->c.h_dry) {
+            double u[3];
+            velocity(s, s->h, s->mom, (int)f, u);
+            d = gmin(d, sqrt(s->m.area[f]));
+            w = gmax(w, sqrt(dot3(u, u)) + sqrt(s->a[f] * s->h[f]));
+        }
+    return w > 0.0 ? 20.0 * d / w : 0.0;
+}
+
+/* Refine, set the finest state piecewise constant from this mesh's. */
+static gf_status startup_begin(gf_surface *s, double t_s)
+{
+    struct gf_startup *u = calloc(1, sizeof *u);
+    if (!u)
+        return gf_fail(GF_ENOMEM, "surface scheme: out of memory for the start-up refinement");
+    s->su = u;
+    u->L = u->cl = s->c.startup_levels;
+    u->t_s = t_s;
+    gf_surface_config c = s->c;
+    c.startup_levels = 0;
+    gf_status st = GF_SUCCESS;
+    for (int l = 1; l <= u->L && !st; ++l) {
+        const gf_surface_mesh *parent = l == 1 ? &s->m : &u->lev[l - 1]->mesh;
+        if ((st = gf_surface_mesh_refine(parent, &u->lev[l])))
+            break;
+        const gf_surface_mesh *mm = &u->lev[l]->mesh;
+        u->froot[l] = malloc(mm->n_faces * sizeof(int));
+        u->eroot[l] = malloc(mm->n_edges * sizeof(int));
+        if (!u->froot[l] || !u->eroot[l]) {
+            st = gf_fail(GF_ENOMEM, "surface scheme: out of memory for the start-up refinement");
+            break;
+        }
+        for (size_t f = 0; f < mm->n_faces; ++f) {
+            const int p = u->lev[l]->parent_face[f];
+            u->froot[l][f] = l == 1 ? p : u->froot[l - 1][p];
+        }
+        for (size_t e = 0; e < mm->n_edges; ++e) {
+            const int p = u->lev[l]->parent_edge[e];
+            u->eroot[l][e] = p < 0 ? -1 : l == 1 ? p : u->eroot[l - 1][p];
+        }
+        if ((st = gf_surface_alloc(mm, &c, &u->sol[l])))
+            break;
+    }
+    if (st)
+        return st;
+    const size_t nfine = u->lev[u->L]->mesh.n_faces, ne = s->m.n_edges;
+    u->hc = malloc(nfine * sizeof *u->hc);
+    u->mc = malloc(3 * nfine * sizeof *u->mc);
+    u->base_vol = malloc((ne + 1) * sizeof *u->base_vol);
+    if (!u->hc || !u->mc || !u->base_vol)
+        return gf_fail(GF_ENOMEM, "surface scheme: out of memory for the start-up refinement");
+    memcpy(u->base_vol, s->edge_vol, ne * sizeof *u->base_vol);
+    const int *root = u->froot[u->L];
+    for (size_t f = 0; f < nfine; ++f) {
+        u->hc[f] = s->h[root[f]];
+        memcpy(u->mc + 3 * f, s->mom + 3 * root[f], 3 * sizeof *u->mc);
+    }
+    return gf_surface_set_state(u->sol[u->L], u->hc, u->mc);
+}
+
+/* Area-weighted means of level l's state on the faces of a coarser mesh
+ * (map: level-l face -> face of that mesh) into u->hc, u->mc. */
+static void startup_restrict(struct gf_startup *u, int l, const gf_surface_mesh *to, const int *map)
+{
+    const gf_surface_mesh *mm = &u->lev[l]->mesh;
+    const double *hl = gf_surface_h(u->sol[l]), *ml = gf_surface_momentum(u->sol[l]);
+    memset(u->hc, 0, to->n_faces * sizeof *u->hc);
+    memset(u->mc, 0, 3 * to->n_faces * sizeof *u->mc);
+    for (size_t f = 0; f < mm->n_faces; ++f) {
+        const int p = map[f];
+        const double A = mm->area[f];
+        u->hc[p] += A * hl[f];
+        for (int k = 0; k < 3; ++k)
+            u->mc[3 * p + k] += A * ml[3 * f + k];
+    }
+    for (size_t f = 0; f < to->n_faces; ++f) {
+        const double r = 1.0 / to->area[f];
+        u->hc[f] *= r;
+        u->mc[3 * f] *= r, u->mc[3 * f + 1] *= r, u->mc[3 * f + 2] *= r;
+    }
+}
+
+/* Level l's statistics into the finished totals */
+static void startup_fold(gf_surface *s, int l)
+{
+    struct gf_startup *u = s->su;
+    gf_surface_stats ls;
+    gf_surface_get_stats(u->sol[l], &ls);
+    u->steps += ls.steps, u->updates += ls.face_updates;
+    s->st.first_order_edges += ls.first_order_edges;
+    s->st.stopped_faces += ls.stopped_faces;
+    s->st.halved_steps += ls.halved_steps;
+    s->st.roundoff_faces += ls.roundoff_faces;
+    s->st.roundoff_volume += ls.roundoff_volume;
+}
+
+/* Advance the start-up by dt (up to t_s), then put its state on this mesh. */
+static gf_status startup_advance(gf_surface *s, double dt)
+{
+    struct gf_startup *u = s->su;
+    gf_status st = GF_SUCCESS;
+    const double target = gmin(u->tau + dt, u->t_s), eps = 1e-12 * u->t_s;
+    /* inflow edges of the running and coarser levels: this step's state */
+    for (int l = 1; l <= u->cl; ++l) {
+        const gf_surface_mesh *mm = &u->lev[l]->mesh;
+        for (size_t e = 0; e < mm->n_edges && !st; ++e)
+            if (mm->kind[e] == GF_EDGE_INFLOW) {
+                const double *b = s->inflow + 4 * u->eroot[l][e];
+                st = gf_surface_set_inflow(u->sol[l], e, b[0], b + 1);
+            }
+    }
+    if (st)
+        return st;
+    while (!st && u->cl >= 1) {
+        const int l = u->cl;
+        const double t_end = u->t_s / (double)(1 << (l - 1)), stop = gmin(target, t_end);
+        while (u->tau < stop - eps) {
+            double dtl;
+            if ((st = gf_surface_max_dt(u->sol[l], &dtl)))
+                return st;
+            if (!(u->tau + dtl < stop - eps))
+                dtl = stop - u->tau;
+            if ((st = gf_surface_step(u->sol[l], dtl)))
+                return st;
+            u->tau = u->tau + dtl >= stop - eps ? stop : u->tau + dtl;
+        }
+        if (u->tau < t_end - eps)
+            break; /* the caller's step ends inside this level */
+        startup_fold(s, l);
+        if (l == 1)
+            break;
+        startup_restrict(u, l, &u->lev[l - 1]->mesh, u->lev[l]->parent_face);
+        if ((st = gf_surface_set_state(u->sol[l - 1], u->hc, u->mc)))
+            return st;
+        u->cl = l - 1;
+    }
+    /* this mesh: the running (or last) level's state, boundary volumes of all */
+    const int l = u->cl;
+    startup_restrict(u, l, &s->m, u->froot[l]);
+    memcpy(s->edge_vol, u->base_vol, s->m.n_edges * sizeof *s->edge_vol);
+    for (int k = l; k <= u->L; ++k) {
+        const gf_surface_mesh *mm = &u->lev[k]->mesh;
+        const double *ev = gf_surface_edge_volume(u->sol[k]);
+        for (size_t e = 0; e < mm->n_edges; ++e)
+            if (mm->neighbour[e] < 0)
+                s->edge_vol[u->eroot[k][e]] += ev[e];
+    }
+    const int finished = u->tau >= u->t_s - eps;
+    gf_surface_stats ls;
+    gf_surface_get_stats(u->sol[l], &ls);
+    const unsigned long updates = u->updates + (finished ? 0 : ls.face_updates);
+    s->st.startup_steps = u->steps + (finished ? 0 : ls.steps);
+    s->st.startup_time = u->tau;
+    s->st.face_updates += updates - u->counted;
+    u->counted = updates;
+    s->st.steps++;
+    if ((st = load_state(s, u->hc, u->mc, NULL, 0)))
+        return st;
+    s->startup_pending = 0;
+    if (finished)
+        startup_free(s);
+    /* the active set of the new state (peak fields, moments) */
+    return build_active(s);
+}
+
+/* A step while the start-up refinement is pending or running */
+static gf_status startup_step(gf_surface *s, double dt)
+{
+    gf_status st;
+    if (!s->su) {
+        const double t_s = startup_time(s);
+        s->startup_pending = 0;
+        if (!(t_s > 0.0))
+            return step_split(s, dt, 0);
+        if ((st = startup_begin(s, t_s))) {
+            startup_free(s);
+            return st;
+        }
+    }
+    const double rest = s->su->t_s - s->su->tau;
+    if ((st = startup_advance(s, gmin(dt, rest))))
+        return st;
+    /* a step longer than what was left of the start-up continues here */
+    return dt > rest ? step_split(s, dt - rest, 0) : GF_SUCCESS;
+}
+
 gf_status gf_surface_step(gf_surface *s, double dt)
 {
     if (!s || !(dt >= 0.0) || !isfinite(dt))
         return gf_fail(GF_EDOM, "surface scheme: time step %g (must be finite, >= 0)", dt);
     if (dt == 0.0)
         return GF_SUCCESS;
+    if (s->startup_pending || s->su)
+        return startup_step(s, dt);
     return step_split(s, dt, 0);
 }
 
