@@ -32,7 +32,8 @@ struct gf_surface {
     double *fh, *fm, *fp, *dpn; /* dpn: extra pressure on the neighbour side (static edges) */
     double *dmn;      /* extra momentum pressure along nu on the neighbour side (static edges) */
     double *ahyd;     /* hydrostatic normal acceleration max(0, -g.n) per face (nt) */
-    unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt) */
+    unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt), then slow (nt) */
+    unsigned char *sedge; /* internal edge with both sides slow this stage (ne) */
     unsigned char *first;
     double *edge_vol, *edge_vol_step;
     double *inflow; /* per edge: h, u[3] */
@@ -95,7 +96,7 @@ void gf_surface_free(gf_surface *s)
     startup_free(s);
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->h,        s->mom,  s->h1,     s->m1,
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
-                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn, s->dmn, s->ahyd, s->stat, s->first, s->edge_vol,
+                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn, s->dmn, s->ahyd, s->stat, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
@@ -228,7 +229,8 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->dpn = calloc(ne + 1, sizeof *s->dpn);
     s->dmn = calloc(ne + 1, sizeof *s->dmn);
     s->ahyd = calloc(nt, sizeof *s->ahyd);
-    s->stat = calloc(nt, 1);
+    s->stat = calloc(2 * nt, 1); /* stat, then slow */
+    s->sedge = calloc(ne + 1, 1);
     s->first = calloc(ne + 1, 1);
     s->edge_vol = calloc(ne + 1, sizeof *s->edge_vol);
     s->edge_vol_step = calloc(ne + 1, sizeof *s->edge_vol_step);
@@ -243,7 +245,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
-        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn || !s->dmn || !s->ahyd || !s->stat ||
+        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn || !s->dmn || !s->ahyd || !s->stat || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
@@ -660,14 +662,6 @@ static inline double hll(double hl, double ul, double vl, double al, double hr, 
     return gmax(-sl, sr);
 }
 
-/* Both sides of internal edge (o, n) slow: |u| < dt |g| (at rest included;
- * a dry face has u = 0). */
-static inline int static_edge(const gf_surface *s, int o, int n)
-{
-    const double *uo = s->u + 3 * o, *un = s->u + 3 * n, us2 = s->u_slow * s->u_slow;
-    return dot3(uo, uo) < us2 && dot3(un, un) < us2;
-}
-
 /* Pressure a_f h_f delta / 2 that face f in the hydrostatic mode feels at
  * its edge to face N: delta = h_N - h_N^eq, h_N^eq the thickness whose basal
  * pressure continues f's hydrostatically, a_N h_N^eq = a_f h_f + g.(x_N -
@@ -691,7 +685,7 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
     double *fm = s->fm + 3 * e;
     double hl, ul[3], F[3], fpress, un_b = 0.0, ut_b = 0.0;
     if (kind == GF_EDGE_INTERNAL) {
-        if (static_edge(s, o, n)) {
+        if (s->sedge[e]) {
             /* Both sides slow (|u| < dt |g|, at most what one step of
              * gravity gives; at rest included).  HLL's mass diffusion
              * s_L s_R (h_R - h_L), of the size of the wave speed, would keep
@@ -814,16 +808,24 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     gf_status st;
     if ((st = exchange(s, H, 1)) || (st = exchange(s, M, 3)) || (st = exchange(s, s->a, 1)))
         return st;
-    for (size_t i = 0; i < s->n_act_f; ++i)
-        velocity(s, H, M, s->act_f[i], s->u + 3 * s->act_f[i]);
     s->u_slow = dt * s->gmag;
-    /* hydrostatic mode: every edge of the face static (internal edges with
-     * both sides slow, walls, outflow edges; not inflow edges) */
-    for (size_t i = 0; i < s->n_act_f; ++i)
-        s->stat[s->act_f[i]] = 1;
+    const double us2 = s->u_slow * s->u_slow;
+    /* velocities, and the hydrostatic mode: every edge of the face static
+     * (internal edges with both sides slow, walls, outflow edges; not inflow
+     * edges); slow[f] holds whether |u_f| < dt |g| */
+    unsigned char *slow = s->stat + s->nt;
+    for (size_t i = 0; i < s->n_act_f; ++i) {
+        const int f = s->act_f[i];
+        double *u = s->u + 3 * f;
+        velocity(s, H, M, f, u);
+        slow[f] = dot3(u, u) < us2;
+        s->stat[f] = 1;
+    }
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i], o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
-        if (kind == GF_EDGE_INFLOW || (kind == GF_EDGE_INTERNAL && !static_edge(s, o, n))) {
+        const int se = kind == GF_EDGE_INTERNAL && slow[o] && slow[n];
+        s->sedge[e] = (unsigned char)se;
+        if (kind == GF_EDGE_INFLOW || (kind == GF_EDGE_INTERNAL && !se)) {
             s->stat[o] = 0;
             if (n >= 0)
                 s->stat[n] = 0;
