@@ -124,8 +124,8 @@ typedef struct gf_surface_config {
 /* Defaults: g = (0, 0, -9.81), rho 1000, h_dry 1e-6, Co 0.5, order 2,
  * centrifugal and lateral feedback on, friction none, startup_levels 0.
  *
- * Start-up refinement (startup_levels = L > 0; serial meshes with
- * edge_points): a dam break or release edge is a discontinuity that spans
+ * Start-up refinement (startup_levels = L > 0; meshes with edge_points; in
+ * parallel with gf_surface_set_edge_exchange and gf_surface_set_min): a dam break or release edge is a discontinuity that spans
  * one face, and while its waves are unresolved the scheme builds a front
  * lag that it never makes up (7-8 faces on Ritter's dam break at 200-800
  * faces).  With L > 0 the first t_s of flow after gf_surface_set_state
@@ -139,7 +139,8 @@ typedef struct gf_surface_config {
  * stay this mesh's (gf_surface_max_dt of the restricted state; inflow states
  * are passed down each step); between them this mesh holds the restriction
  * of the running level, and boundary volumes of every level reach its
- * edges.  The peak fields see the state at the end of each step.  Work:
+ * edges.  The peak fields see the state at the end of each step; a
+ * restart (gf_surface_restore) taken inside t_s continues on this mesh.  Work:
  * at most 8 (L = 1), 36 (L = 2) or 148 (L = 3) times that of this mesh over
  * t_s (level l: 4^l faces, 2^l steps; fewer where faces are dry).
  * Measured (order 2, fronts at h = 1e-3, t = 5, 95-395 cells of travel):
@@ -162,12 +163,29 @@ void gf_surface_free(gf_surface *s);
 /* Halo exchange used by every stage (NULL: serial, no ghosts allowed). */
 void gf_surface_set_exchange(gf_surface *s, gf_surface_exchange_fn fn, void *ctx);
 
+/* Exchange of blocks per processor edge: send and recv hold ncomp doubles
+ * per ghost g (the processor edge of ghost g): send this rank's block, recv
+ * the neighbouring rank's block for the same edge; 0 on success.  Needed by
+ * startup_levels > 0 in a parallel run (the refined meshes' halos). */
+typedef int (*gf_surface_edge_exchange_fn)(void *ctx, const double *send, double *recv, int ncomp);
+void gf_surface_set_edge_exchange(gf_surface *s, gf_surface_edge_exchange_fn fn, void *ctx);
+
+/* Global minimum over all ranks of each of v[0..n-1], in place; 0 on
+ * success.  Needed by startup_levels > 0 in a parallel run (the start-up's
+ * length and the refined meshes' steps are the same on every rank). */
+typedef int (*gf_surface_min_fn)(void *ctx, double *v, int n);
+void gf_surface_set_min(gf_surface *s, gf_surface_min_fn fn, void *ctx);
+
 /* Uniform refinement: each face of k edges becomes k quadrilaterals (face
  * centre, the midpoints of two consecutive edges and their common corner);
  * each edge becomes two, keeping its kind, normal and parent; new edges join
  * the centre to each midpoint.  Sub-face areas are scaled to sum to the
- * parent's exactly.  Needs edge_points and no ghosts; errors name the face
- * or edge. */
+ * parent's exactly.  Ghost faces are not split: each becomes two ghost
+ * sub-faces, one per half of its processor edge, numbered from the half at
+ * the lexicographically smaller end point (the same on both ranks), with
+ * the parent ghost's geometry until the caller fills in the neighbouring
+ * rank's (the start-up does, through gf_surface_set_edge_exchange).  Needs
+ * edge_points; errors name the face or edge. */
 typedef struct gf_surface_refined {
     gf_surface_mesh mesh;  /* the refined mesh (arrays owned by this struct) */
     int *parent_face;      /* [mesh.n_faces] face of the input mesh */

@@ -40,9 +40,6 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
     if (!in->edge_points)
         return gf_fail(GF_EINVAL, "surface mesh refinement: the mesh has no edge_points (the end points of "
                                   "each edge are needed to split its faces)");
-    if (in->n_ghosts > 0)
-        return gf_fail(GF_EINVAL, "surface mesh refinement: the mesh has %zu ghost faces; refinement is "
-                                  "serial only", in->n_ghosts);
     const size_t nf = in->n_faces, ne = in->n_edges;
     /* face -> edges */
     size_t *start = calloc(nf + 1, sizeof *start);
@@ -54,7 +51,7 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
     }
     for (size_t e = 0; e < ne; ++e) {
         start[in->owner[e] + 1]++;
-        if (in->neighbour[e] >= 0)
+        if (in->neighbour[e] >= 0 && (size_t)in->neighbour[e] < nf) /* ghosts are not split */
             start[in->neighbour[e] + 1]++;
     }
     for (size_t f = 0; f < nf; ++f)
@@ -67,17 +64,17 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
         }
         for (size_t e = 0; e < ne; ++e) {
             fe[start[in->owner[e]] + fill[in->owner[e]]++] = (int)e;
-            if (in->neighbour[e] >= 0)
+            if (in->neighbour[e] >= 0 && (size_t)in->neighbour[e] < nf)
                 fe[start[in->neighbour[e]] + fill[in->neighbour[e]]++] = (int)e;
         }
         free(fill);
     }
     /* sub-faces: one per edge of each face; sub-edges: two per edge plus
      * one per face edge (centre to midpoint) */
-    const size_t nsf = start[nf], nse = 2 * ne + start[nf];
-    r->area_ = malloc(nsf * sizeof(double));
-    r->centre_ = malloc(3 * nsf * sizeof(double));
-    r->normal_ = malloc(3 * nsf * sizeof(double));
+    const size_t nsf = start[nf], nse = 2 * ne + start[nf], ngh = 2 * in->n_ghosts, nst = nsf + ngh;
+    r->area_ = malloc((nst + 1) * sizeof(double));
+    r->centre_ = malloc(3 * (nst + 1) * sizeof(double));
+    r->normal_ = malloc(3 * (nst + 1) * sizeof(double));
     r->parent_face = malloc(nsf * sizeof(int));
     r->first_sub = malloc((nf + 1) * sizeof(size_t));
     r->length_ = malloc(nse * sizeof(double));
@@ -185,6 +182,14 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
             r->area_[s0 + i] *= in->area[f] / sum;
     }
     r->first_sub[nf] = nsf;
+    /* ghost sub-faces: two per ghost (one per half of its processor edge),
+     * the parent ghost's geometry until the caller fills the neighbour's */
+    for (size_t j = 0; j < ngh; ++j) {
+        const size_t g = nf + j / 2, sf = nsf + j;
+        r->area_[sf] = 0.5 * in->area[g];
+        memcpy(r->centre_ + 3 * sf, in->centre + 3 * g, 3 * sizeof(double));
+        memcpy(r->normal_ + 3 * sf, in->normal + 3 * g, 3 * sizeof(double));
+    }
     /* sub-edges: the two halves of every edge first (in edge order), then
      * the centre-to-midpoint edges inside each face */
     size_t se = 0;
@@ -195,9 +200,21 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
             const double *end = half ? p1 : p0;
             /* the sub-face of face g whose corner is this half's end point */
             int sub[2] = {-1, -1};
+            if (nb >= 0 && (size_t)nb >= nf) {
+                /* a processor edge: the ghost sub-face of this half, numbered
+                 * from the end point that is lexicographically smaller, the
+                 * same on both ranks (identical coordinates) */
+                const double *lo = p0;
+                for (int d = 0; d < 3; ++d)
+                    if (p0[d] != p1[d]) {
+                        lo = p0[d] < p1[d] ? p0 : p1;
+                        break;
+                    }
+                sub[1] = (int)(nsf + 2 * ((size_t)nb - nf) + (end == lo ? 0 : 1));
+            }
             for (int side = 0; side < 2; ++side) {
                 const int g = side ? nb : o;
-                if (g < 0)
+                if (g < 0 || sub[side] >= 0)
                     continue;
                 const size_t k = start[g + 1] - start[g], s0 = start[g];
                 double tol = 1e-9 * in->length[e];
@@ -261,7 +278,7 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
         gf_surface_refined_free(r);
         return st;
     }
-    gf_surface_mesh m = {nsf, 0, nse, r->area_, r->centre_, r->normal_, r->owner_, r->neighbour_,
+    gf_surface_mesh m = {nsf, ngh, nse, r->area_, r->centre_, r->normal_, r->owner_, r->neighbour_,
                          r->kind_, r->length_, r->enormal_, r->ecentre_, r->epoints_};
     r->mesh = m;
     *out = r;

@@ -14,6 +14,10 @@ struct gf_surface {
     size_t nt; /* owned + ghost faces */
     gf_surface_exchange_fn xfn;
     void *xctx;
+    gf_surface_edge_exchange_fn xefn; /* per-processor-edge blocks (start-up in parallel) */
+    void *xectx;
+    gf_surface_min_fn minfn; /* global minima (start-up in parallel) */
+    void *minctx;
     double gmag;
     /* face -> edges (all nt faces; a ghost has its one processor edge) */
     size_t *fe_start;
@@ -198,10 +202,9 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     gf_status st;
     if ((st = check_config(cfg)) || (st = check_mesh(mesh)))
         return st;
-    if (cfg->startup_levels > 0 && (!mesh->edge_points || mesh->n_ghosts > 0))
-        return gf_fail(GF_EINVAL, "surface scheme: startup_levels = %d needs %s", cfg->startup_levels,
-                       mesh->n_ghosts > 0 ? "a serial run (the mesh has ghost faces of other ranks)"
-                                          : "the mesh's edge_points (the end points of each edge)");
+    if (cfg->startup_levels > 0 && !mesh->edge_points)
+        return gf_fail(GF_EINVAL, "surface scheme: startup_levels = %d needs the mesh's edge_points (the end "
+                                  "points of each edge)", cfg->startup_levels);
     gf_surface *s = calloc(1, sizeof *s);
     if (!s)
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
@@ -289,6 +292,30 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     }
     *out = s;
     return GF_SUCCESS;
+}
+
+void gf_surface_set_min(gf_surface *s, gf_surface_min_fn fn, void *ctx)
+{
+    s->minfn = fn;
+    s->minctx = ctx;
+}
+
+/* v[0..n-1] to their minima over all ranks (serial: unchanged) */
+static gf_status global_min(gf_surface *s, double *v, int n)
+{
+    if (s->m.n_ghosts == 0 && !s->minfn)
+        return GF_SUCCESS;
+    if (!s->minfn)
+        return gf_fail(GF_EINVAL, "surface scheme: startup_levels in a parallel run needs gf_surface_set_min");
+    if (s->minfn(s->minctx, v, n))
+        return gf_fail(GF_EIO, "surface scheme: the global minimum failed");
+    return GF_SUCCESS;
+}
+
+void gf_surface_set_edge_exchange(gf_surface *s, gf_surface_edge_exchange_fn fn, void *ctx)
+{
+    s->xefn = fn;
+    s->xectx = ctx;
 }
 
 void gf_surface_set_exchange(gf_surface *s, gf_surface_exchange_fn fn, void *ctx)
@@ -823,7 +850,8 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     }
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i], o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
-        const int se = kind == GF_EDGE_INTERNAL && slow[o] && slow[n];
+        /* a neighbour outside the active set is dry and at rest */
+        const int se = kind == GF_EDGE_INTERNAL && slow[o] && (slow[n] || s->mark_f[n] != s->stamp);
         s->sedge[e] = (unsigned char)se;
         if (kind == GF_EDGE_INFLOW || (kind == GF_EDGE_INTERNAL && !se)) {
             s->stat[o] = 0;
@@ -993,11 +1021,44 @@ static gf_status step_split(gf_surface *s, double dt, int depth)
  * until t_end(cl) = t_s / 2^(cl-1) and is then restricted to level cl-1;
  * level 1 ends at t_s on this mesh.  Between the caller's steps this mesh
  * holds the restriction of the running level (writes, peaks, volumes). */
+/* The halo of refined level l in a parallel run: its ghost sub-faces are
+ * the neighbouring rank's sub-faces along the processor edges, 2^l per
+ * coarse ghost in the order of gf_surface_mesh_refine, moved as one block
+ * per processor edge by the coarse mesh's edge exchange. */
+struct level_halo {
+    gf_surface *coarse;
+    const gf_surface_mesh *mesh;
+    int l;
+    double *send, *recv; /* 12 doubles per ghost sub-face (the gradients' 3 NV) */
+};
+
+static int level_exchange(void *ctx, double *field, int ncomp)
+{
+    struct level_halo *x = ctx;
+    const gf_surface_mesh *m = x->mesh;
+    const size_t n = m->n_faces;
+    if (m->n_ghosts == 0)
+        return 0;
+    if (ncomp > 3 * NV || !x->coarse->xefn)
+        return 1;
+    for (size_t e = 0; e < m->n_edges; ++e) {
+        const int nb = m->neighbour[e];
+        if (nb >= 0 && (size_t)nb >= n)
+            memcpy(x->send + ((size_t)nb - n) * (size_t)ncomp, field + (size_t)m->owner[e] * (size_t)ncomp,
+                   (size_t)ncomp * sizeof *field);
+    }
+    if (x->coarse->xefn(x->coarse->xectx, x->send, x->recv, ncomp << x->l))
+        return 1;
+    memcpy(field + n * (size_t)ncomp, x->recv, m->n_ghosts * (size_t)ncomp * sizeof *field);
+    return 0;
+}
+
 struct gf_startup {
     int L, cl;
     double t_s, tau;
     gf_surface_refined *lev[4];
     gf_surface *sol[4];
+    struct level_halo halo[4];
     int *froot[4], *eroot[4];
     double *base_vol;       /* this mesh's edge volumes when the start-up began */
     double *hc, *mc;        /* restriction scratch (finest size) */
@@ -1013,6 +1074,8 @@ static void startup_free(gf_surface *s)
     for (int l = 1; l <= 3; ++l) {
         gf_surface_free(u->sol[l]);
         gf_surface_refined_free(u->lev[l]);
+        free(u->halo[l].send);
+        free(u->halo[l].recv);
         free(u->froot[l]);
         free(u->eroot[l]);
     }
@@ -1021,18 +1084,20 @@ static void startup_free(gf_surface *s)
     s->su = NULL;
 }
 
-/* t_s = 20 d / w (0 when nothing is wet) */
-static double startup_time(gf_surface *s)
+/* t_s = 20 d / w over all ranks (0 when nothing is wet) */
+static gf_status startup_time(gf_surface *s, double *t_s)
 {
-    double d = HUGE_VAL, w = 0.0;
+    double v[2] = {HUGE_VAL, 0.0}; /* d, -w */
     for (size_t f = 0; f < s->m.n_faces; ++f)
         if (s->h[f] > s->c.h_dry) {
             double u[3];
             velocity(s, s->h, s->mom, (int)f, u);
-            d = gmin(d, sqrt(s->m.area[f]));
-            w = gmax(w, sqrt(dot3(u, u)) + sqrt(s->a[f] * s->h[f]));
+            v[0] = gmin(v[0], sqrt(s->m.area[f]));
+            v[1] = gmin(v[1], -(sqrt(dot3(u, u)) + sqrt(s->a[f] * s->h[f])));
         }
-    return w > 0.0 ? 20.0 * d / w : 0.0;
+    const gf_status st = global_min(s, v, 2);
+    *t_s = v[1] < 0.0 ? 20.0 * v[0] / -v[1] : 0.0;
+    return st;
 }
 
 /* Refine, set the finest state piecewise constant from this mesh's. */
@@ -1066,8 +1131,30 @@ static gf_status startup_begin(gf_surface *s, double t_s)
             const int p = u->lev[l]->parent_edge[e];
             u->eroot[l][e] = p < 0 ? -1 : l == 1 ? p : u->eroot[l - 1][p];
         }
+        if (mm->n_ghosts > 0) { /* the neighbours' sub-face geometry into the ghosts */
+            struct level_halo *x = &u->halo[l];
+            x->coarse = s, x->mesh = mm, x->l = l;
+            x->send = malloc(3 * NV * mm->n_ghosts * sizeof *x->send);
+            x->recv = malloc(3 * NV * mm->n_ghosts * sizeof *x->recv);
+            if (!x->send || !x->recv) {
+                st = gf_fail(GF_ENOMEM, "surface scheme: out of memory for the start-up refinement");
+                break;
+            }
+            if (!s->xefn) {
+                st = gf_fail(GF_EINVAL, "surface scheme: startup_levels = %d in a parallel run needs "
+                                        "gf_surface_set_edge_exchange", u->L);
+                break;
+            }
+            if (level_exchange(x, u->lev[l]->area_, 1) || level_exchange(x, u->lev[l]->centre_, 3) ||
+                level_exchange(x, u->lev[l]->normal_, 3)) {
+                st = gf_fail(GF_EINVAL, "surface scheme: the halo exchange of the refined mesh failed");
+                break;
+            }
+        }
         if ((st = gf_surface_alloc(mm, &c, &u->sol[l])))
             break;
+        if (mm->n_ghosts > 0)
+            gf_surface_set_exchange(u->sol[l], level_exchange, &u->halo[l]);
     }
     if (st)
         return st;
@@ -1144,7 +1231,7 @@ static gf_status startup_advance(gf_surface *s, double dt)
         const double t_end = u->t_s / (double)(1 << (l - 1)), stop = gmin(target, t_end);
         while (u->tau < stop - eps) {
             double dtl;
-            if ((st = gf_surface_max_dt(u->sol[l], &dtl)))
+            if ((st = gf_surface_max_dt(u->sol[l], &dtl)) || (st = global_min(s, &dtl, 1)))
                 return st;
             if (!(u->tau + dtl < stop - eps))
                 dtl = stop - u->tau;
@@ -1188,7 +1275,10 @@ static gf_status startup_advance(gf_surface *s, double dt)
     if (finished)
         startup_free(s);
     /* the active set of the new state (peak fields, moments) */
-    return build_active(s);
+    if ((st = build_active(s)))
+        return st;
+    s->st.active_faces = s->n_act_owned;
+    return GF_SUCCESS;
 }
 
 /* A step while the start-up refinement is pending or running */
@@ -1196,7 +1286,9 @@ static gf_status startup_step(gf_surface *s, double dt)
 {
     gf_status st;
     if (!s->su) {
-        const double t_s = startup_time(s);
+        double t_s;
+        if ((st = startup_time(s, &t_s)))
+            return st;
         s->startup_pending = 0;
         if (!(t_s > 0.0))
             return step_split(s, dt, 0);
