@@ -604,7 +604,7 @@ static void dry_fronts_against_exact(void **state)
  * front has crossed about 40 faces, on meshes refined twice and once) takes
  * away the start-up lag of dry_fronts_against_exact: order 2, Ritter and
  * the Coulomb incline, fronts within 3 cells at N = 200, 400, 800 (95 to
- * 395 cells of travel; measured Ritter -2.26, -1.90, -1.43), the front
+ * 395 cells of travel; measured Ritter -2.19, -1.83, -1.40), the front
  * error in metres falling at first order or better (by more than 4 over
  * the two doublings), L1(h) at most half of the run without (N = 200,
  * 400; measured a quarter to a third). */

@@ -125,27 +125,29 @@ typedef struct gf_surface_config {
  * centrifugal and lateral feedback on, friction none, startup_levels 0.
  *
  * Start-up refinement (startup_levels = L > 0; meshes with edge_points; in
- * parallel with gf_surface_set_edge_exchange and gf_surface_set_min): a dam break or release edge is a discontinuity that spans
- * one face, and while its waves are unresolved the scheme builds a front
- * lag that it never makes up (7-8 faces on Ritter's dam break at 200-800
- * faces).  With L > 0 the first t_s of flow after gf_surface_set_state
- * runs on meshes refined L, L-1, .., 1 times (gf_surface_mesh_refine: 4^L
- * faces per quadrilateral): the state is carried down piecewise constant,
- * the finest mesh runs to t_s / 2^(L-1), each coarser one to twice the
- * time of the finer one, each restricted to the next by area-weighted means
- * (mass to round-off), the last onto this mesh at t_s = 20 d / w (d the smallest
- * sqrt(area) of a wet face, w the largest initial wave speed |u| +
- * sqrt(a h): the fastest front crosses about 40 faces).  The caller's steps
- * stay this mesh's (gf_surface_max_dt of the restricted state; inflow states
- * are passed down each step); between them this mesh holds the restriction
- * of the running level, and boundary volumes of every level reach its
- * edges.  The peak fields see the state at the end of each step; a
- * restart (gf_surface_restore) taken inside t_s continues on this mesh.  Work:
- * at most 8 (L = 1), 36 (L = 2) or 148 (L = 3) times that of this mesh over
- * t_s (level l: 4^l faces, 2^l steps; fewer where faces are dry).
- * Measured (order 2, fronts at h = 1e-3, t = 5, 95-395 cells of travel):
- * Ritter -7.6 / -7.9 / -6.7 cells at N = 200 / 400 / 800
- * without, -2.3 / -1.9 / -1.4 with L = 2. */
+ * parallel with gf_surface_set_edge_exchange and gf_surface_set_min): a dam
+ * break or release edge is a discontinuity that spans one face, and while
+ * its waves are unresolved the scheme builds a front lag that it never
+ * makes up (7-8 faces on Ritter's dam break at 200-800 faces).  With L > 0
+ * the first phase of flow after gf_surface_set_state runs on meshes refined
+ * L, L-1, .., 1 times (gf_surface_mesh_refine: 4^L faces per
+ * quadrilateral).  The state is carried down piecewise constant; the phase
+ * is measured by the travel of the fastest wave, the integral over time of
+ * the largest |u| + sqrt(a h) over the faces: the finest mesh runs until
+ * that is D / 2^(L-1), each coarser one to twice the travel of the finer
+ * one, each restricted to the next by area-weighted means (mass to
+ * round-off), the last onto this mesh at D = 40 d (d the smallest
+ * sqrt(area) of a wet face at the start), or when nothing moves.  The
+ * caller's steps stay this mesh's (gf_surface_max_dt of the restricted
+ * state; inflow states are passed down each step); between them this mesh
+ * holds the restriction of the running level, and boundary volumes of every
+ * level reach its edges.  The peak fields see the state at the end of each
+ * step; a restart (gf_surface_restore) taken inside the phase continues on
+ * this mesh.  Work: at most 8 (L = 1), 36 (L = 2) or 148 (L = 3) times that
+ * of this mesh over the phase (level l: 4^l faces, 2^l steps; fewer where
+ * faces are dry).  Measured (order 2, fronts at h = 1e-3, t = 5, 95-395
+ * cells of travel): Ritter -7.6 / -8.0 / -6.8 cells at N = 200 / 400 / 800
+ * without, -2.2 / -1.8 / -1.4 with L = 2. */
 void gf_surface_config_default(gf_surface_config *c);
 
 typedef struct gf_surface gf_surface;

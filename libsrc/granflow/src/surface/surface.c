@@ -1018,8 +1018,8 @@ static gf_status step_split(gf_surface *s, double dt, int depth)
  * granflow/surface.h).  Level l is the mesh refined l times; its faces map
  * to level l-1 through parent_face and to this mesh through froot, its edges
  * to this mesh's edges through eroot (-1 inside a face).  Level cl runs
- * until t_end(cl) = t_s / 2^(cl-1) and is then restricted to level cl-1;
- * level 1 ends at t_s on this mesh.  Between the caller's steps this mesh
+ * until the fastest wave has travelled D / 2^(cl-1) and is then restricted to
+ * level cl-1; level 1 ends at D on this mesh.  Between the caller's steps this mesh
  * holds the restriction of the running level (writes, peaks, volumes). */
 /* The halo of refined level l in a parallel run: its ghost sub-faces are
  * the neighbouring rank's sub-faces along the processor edges, 2^l per
@@ -1055,7 +1055,9 @@ static int level_exchange(void *ctx, double *field, int ncomp)
 
 struct gf_startup {
     int L, cl;
-    double t_s, tau;
+    double D;      /* the travel that ends level 1: 40 d */
+    double travel; /* integral of the largest wave speed over the start-up's time */
+    double tau;    /* time since the start-up began */
     gf_surface_refined *lev[4];
     gf_surface *sol[4];
     struct level_halo halo[4];
@@ -1084,31 +1086,46 @@ static void startup_free(gf_surface *s)
     s->su = NULL;
 }
 
-/* t_s = 20 d / w over all ranks (0 when nothing is wet) */
-static gf_status startup_time(gf_surface *s, double *t_s)
+/* The largest wave speed |u| + sqrt(a h) of the owned active faces, over
+ * all ranks */
+static gf_status max_wave_speed(gf_surface *s, gf_surface *g, double *w)
 {
-    double v[2] = {HUGE_VAL, 0.0}; /* d, -w */
-    for (size_t f = 0; f < s->m.n_faces; ++f)
-        if (s->h[f] > s->c.h_dry) {
+    double v = 0.0; /* -w */
+    for (size_t i = 0; i < g->n_act_owned; ++i) {
+        const int f = g->act_f[i];
+        if (g->h[f] > g->c.h_dry) {
             double u[3];
-            velocity(s, s->h, s->mom, (int)f, u);
-            v[0] = gmin(v[0], sqrt(s->m.area[f]));
-            v[1] = gmin(v[1], -(sqrt(dot3(u, u)) + sqrt(s->a[f] * s->h[f])));
+            velocity(g, g->h, g->mom, f, u);
+            v = gmin(v, -(sqrt(dot3(u, u)) + sqrt(g->a[f] * g->h[f])));
         }
-    const gf_status st = global_min(s, v, 2);
-    *t_s = v[1] < 0.0 ? 20.0 * v[0] / -v[1] : 0.0;
+    }
+    const gf_status st = global_min(s, &v, 1);
+    *w = -v;
+    return st;
+}
+
+/* D = 40 d over all ranks, d the smallest sqrt(area) of a wet face (0 when
+ * nothing is wet) */
+static gf_status startup_length(gf_surface *s, double *D)
+{
+    double d = HUGE_VAL;
+    for (size_t f = 0; f < s->m.n_faces; ++f)
+        if (s->h[f] > s->c.h_dry)
+            d = gmin(d, sqrt(s->m.area[f]));
+    const gf_status st = global_min(s, &d, 1);
+    *D = d < HUGE_VAL ? 40.0 * d : 0.0;
     return st;
 }
 
 /* Refine, set the finest state piecewise constant from this mesh's. */
-static gf_status startup_begin(gf_surface *s, double t_s)
+static gf_status startup_begin(gf_surface *s, double D)
 {
     struct gf_startup *u = calloc(1, sizeof *u);
     if (!u)
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory for the start-up refinement");
     s->su = u;
     u->L = u->cl = s->c.startup_levels;
-    u->t_s = t_s;
+    u->D = D;
     gf_surface_config c = s->c;
     c.startup_levels = 0;
     gf_status st = GF_SUCCESS;
@@ -1209,12 +1226,13 @@ static void startup_fold(gf_surface *s, int l)
     s->st.roundoff_volume += ls.roundoff_volume;
 }
 
-/* Advance the start-up by dt (up to t_s), then put its state on this mesh. */
-static gf_status startup_advance(gf_surface *s, double dt)
+/* Advance the start-up by up to dt (it may end inside the step: *used is
+ * the time it took), then put its state on this mesh. */
+static gf_status startup_advance(gf_surface *s, double dt, double *used)
 {
     struct gf_startup *u = s->su;
     gf_status st = GF_SUCCESS;
-    const double target = gmin(u->tau + dt, u->t_s), eps = 1e-12 * u->t_s;
+    const double t0 = u->tau, target = u->tau + dt, eps = 1e-12 * dt;
     /* inflow edges of the running and coarser levels: this step's state */
     for (int l = 1; l <= u->cl; ++l) {
         const gf_surface_mesh *mm = &u->lev[l]->mesh;
@@ -1226,29 +1244,36 @@ static gf_status startup_advance(gf_surface *s, double dt)
     }
     if (st)
         return st;
-    while (!st && u->cl >= 1) {
+    int finished = 0;
+    while (u->tau < target - eps) {
         const int l = u->cl;
-        const double t_end = u->t_s / (double)(1 << (l - 1)), stop = gmin(target, t_end);
-        while (u->tau < stop - eps) {
-            double dtl;
-            if ((st = gf_surface_max_dt(u->sol[l], &dtl)) || (st = global_min(s, &dtl, 1)))
-                return st;
-            if (!(u->tau + dtl < stop - eps))
-                dtl = stop - u->tau;
-            if ((st = gf_surface_step(u->sol[l], dtl)))
-                return st;
-            u->tau = u->tau + dtl >= stop - eps ? stop : u->tau + dtl;
-        }
-        if (u->tau < t_end - eps)
-            break; /* the caller's step ends inside this level */
-        startup_fold(s, l);
-        if (l == 1)
-            break;
-        startup_restrict(u, l, &u->lev[l - 1]->mesh, u->lev[l]->parent_face);
-        if ((st = gf_surface_set_state(u->sol[l - 1], u->hc, u->mc)))
+        const double Dl = u->D / (double)(1 << (l - 1));
+        double w, dtl; /* max_dt first: it builds the active set max_wave_speed reads */
+        if ((st = gf_surface_max_dt(u->sol[l], &dtl)) || (st = global_min(s, &dtl, 1)) ||
+            (st = max_wave_speed(s, u->sol[l], &w)))
             return st;
-        u->cl = l - 1;
+        if (!(w > 0.0) || u->travel >= Dl) { /* this level is done (or nothing moves) */
+            startup_fold(s, l);
+            if (l == 1 || !(w > 0.0)) {
+                finished = 1;
+                break;
+            }
+            startup_restrict(u, l, &u->lev[l - 1]->mesh, u->lev[l]->parent_face);
+            if ((st = gf_surface_set_state(u->sol[l - 1], u->hc, u->mc)))
+                return st;
+            u->cl = l - 1;
+            continue;
+        }
+        /* land on the level's travel, and on the caller's step */
+        dtl = gmin(dtl, (Dl - u->travel) / w * (1.0 + 1e-12));
+        if (!(u->tau + dtl < target - eps))
+            dtl = target - u->tau;
+        if ((st = gf_surface_step(u->sol[l], dtl)))
+            return st;
+        u->tau = u->tau + dtl >= target - eps ? target : u->tau + dtl;
+        u->travel += w * dtl;
     }
+    *used = u->tau - t0;
     /* this mesh: the running (or last) level's state, boundary volumes of all */
     const int l = u->cl;
     startup_restrict(u, l, &s->m, u->froot[l]);
@@ -1260,7 +1285,6 @@ static gf_status startup_advance(gf_surface *s, double dt)
             if (mm->neighbour[e] < 0)
                 s->edge_vol[u->eroot[k][e]] += ev[e];
     }
-    const int finished = u->tau >= u->t_s - eps;
     gf_surface_stats ls;
     gf_surface_get_stats(u->sol[l], &ls);
     const unsigned long updates = u->updates + (finished ? 0 : ls.face_updates);
@@ -1268,7 +1292,8 @@ static gf_status startup_advance(gf_surface *s, double dt)
     s->st.startup_time = u->tau;
     s->st.face_updates += updates - u->counted;
     u->counted = updates;
-    s->st.steps++;
+    if (*used > 0.0)
+        s->st.steps++;
     if ((st = load_state(s, u->hc, u->mc, NULL, 0)))
         return st;
     s->startup_pending = 0;
@@ -1286,22 +1311,22 @@ static gf_status startup_step(gf_surface *s, double dt)
 {
     gf_status st;
     if (!s->su) {
-        double t_s;
-        if ((st = startup_time(s, &t_s)))
+        double D;
+        if ((st = startup_length(s, &D)))
             return st;
         s->startup_pending = 0;
-        if (!(t_s > 0.0))
+        if (!(D > 0.0))
             return step_split(s, dt, 0);
-        if ((st = startup_begin(s, t_s))) {
+        if ((st = startup_begin(s, D))) {
             startup_free(s);
             return st;
         }
     }
-    const double rest = s->su->t_s - s->su->tau;
-    if ((st = startup_advance(s, gmin(dt, rest))))
+    double used = 0.0;
+    if ((st = startup_advance(s, dt, &used)))
         return st;
-    /* a step longer than what was left of the start-up continues here */
-    return dt > rest ? step_split(s, dt - rest, 0) : GF_SUCCESS;
+    /* the start-up ended inside the step: the rest on this mesh */
+    return used < dt * (1.0 - 1e-12) ? step_split(s, dt - used, 0) : GF_SUCCESS;
 }
 
 gf_status gf_surface_step(gf_surface *s, double dt)
