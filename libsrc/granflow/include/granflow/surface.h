@@ -190,9 +190,8 @@ void gf_surface_set_min(gf_surface *s, gf_surface_min_fn fn, void *ctx);
  * edge_points; errors name the face or edge. */
 typedef struct gf_surface_refined {
     gf_surface_mesh mesh;  /* the refined mesh (arrays owned by this struct) */
-    int *parent_face;      /* [mesh.n_faces] face of the input mesh */
+    int *parent_face;      /* [mesh.n_faces] face of the input mesh (its sub-faces are consecutive) */
     int *parent_edge;      /* [mesh.n_edges] edge of the input mesh, -1 inside a face */
-    size_t *first_sub;     /* [input n_faces + 1]: sub-faces of face f are first_sub[f] .. first_sub[f+1]-1 */
     double *area_, *centre_, *normal_, *length_, *enormal_, *ecentre_, *epoints_; /* storage */
     int *owner_, *neighbour_, *kind_;
 } gf_surface_refined;

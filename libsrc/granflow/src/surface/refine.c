@@ -21,7 +21,7 @@ void gf_surface_refined_free(gf_surface_refined *r)
     if (!r)
         return;
     void *p[] = {r->area_, r->centre_, r->normal_, r->length_, r->enormal_, r->ecentre_, r->epoints_,
-                 r->owner_, r->neighbour_, r->kind_, r->parent_face, r->parent_edge, r->first_sub};
+                 r->owner_, r->neighbour_, r->kind_, r->parent_face, r->parent_edge};
     for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
         free(p[i]);
     free(r);
@@ -76,7 +76,6 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
     r->centre_ = malloc(3 * (nst + 1) * sizeof(double));
     r->normal_ = malloc(3 * (nst + 1) * sizeof(double));
     r->parent_face = malloc(nsf * sizeof(int));
-    r->first_sub = malloc((nf + 1) * sizeof(size_t));
     r->length_ = malloc(nse * sizeof(double));
     r->enormal_ = malloc(3 * nse * sizeof(double));
     r->ecentre_ = malloc(3 * nse * sizeof(double));
@@ -88,7 +87,7 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
     /* per face-edge slot: the cyclic position, and the sub-face at each end */
     int *slot_edge = malloc((nsf + 1) * sizeof(int));
     double *corner = malloc((3 * nsf + 1) * sizeof(double)); /* corner i: between slots i and i+1 */
-    if (!r->area_ || !r->centre_ || !r->normal_ || !r->parent_face || !r->first_sub || !r->length_ ||
+    if (!r->area_ || !r->centre_ || !r->normal_ || !r->parent_face || !r->length_ ||
         !r->enormal_ || !r->ecentre_ || !r->epoints_ || !r->owner_ || !r->neighbour_ || !r->kind_ ||
         !r->parent_edge || !slot_edge || !corner) {
         free(start), free(fe), free(slot_edge), free(corner);
@@ -101,7 +100,6 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
      * the point E_i shares with E_{i+1} */
     for (size_t f = 0; f < nf && !st; ++f) {
         const size_t k = start[f + 1] - start[f], s0 = start[f];
-        r->first_sub[f] = s0;
         if (k < 3) {
             st = gf_fail(GF_EDOM, "surface mesh refinement: face %zu has %zu edges (need >= 3)", f, k);
             break;
@@ -181,7 +179,6 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
         for (size_t i = 0; i < k && !st; ++i)
             r->area_[s0 + i] *= in->area[f] / sum;
     }
-    r->first_sub[nf] = nsf;
     /* ghost sub-faces: two per ghost (one per half of its processor edge),
      * the parent ghost's geometry until the caller fills the neighbour's */
     for (size_t j = 0; j < ngh; ++j) {

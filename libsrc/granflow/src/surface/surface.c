@@ -36,7 +36,8 @@ struct gf_surface {
     double *fh, *fm, *fp, *dpn; /* dpn: extra pressure on the neighbour side (static edges) */
     double *dmn;      /* extra momentum pressure along nu on the neighbour side (static edges) */
     double *ahyd;     /* hydrostatic normal acceleration max(0, -g.n) per face (nt) */
-    unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt), then slow (nt) */
+    unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt) */
+    unsigned char *slow; /* |u| < dt |g| this stage (nt) */
     unsigned char *sedge; /* internal edge with both sides slow this stage (ne) */
     unsigned char *first;
     double *edge_vol, *edge_vol_step;
@@ -100,7 +101,7 @@ void gf_surface_free(gf_surface *s)
     startup_free(s);
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->h,        s->mom,  s->h1,     s->m1,
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
-                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn, s->dmn, s->ahyd, s->stat, s->sedge, s->first, s->edge_vol,
+                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn, s->dmn, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
@@ -232,7 +233,8 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->dpn = calloc(ne + 1, sizeof *s->dpn);
     s->dmn = calloc(ne + 1, sizeof *s->dmn);
     s->ahyd = calloc(nt, sizeof *s->ahyd);
-    s->stat = calloc(2 * nt, 1); /* stat, then slow */
+    s->stat = calloc(nt, 1);
+    s->slow = calloc(nt, 1);
     s->sedge = calloc(ne + 1, 1);
     s->first = calloc(ne + 1, 1);
     s->edge_vol = calloc(ne + 1, sizeof *s->edge_vol);
@@ -248,7 +250,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
-        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn || !s->dmn || !s->ahyd || !s->stat || !s->sedge ||
+        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn || !s->dmn || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
@@ -839,8 +841,8 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     const double us2 = s->u_slow * s->u_slow;
     /* velocities, and the hydrostatic mode: every edge of the face static
      * (internal edges with both sides slow, walls, outflow edges; not inflow
-     * edges); slow[f] holds whether |u_f| < dt |g| */
-    unsigned char *slow = s->stat + s->nt;
+     * edges) */
+    unsigned char *slow = s->slow;
     for (size_t i = 0; i < s->n_act_f; ++i) {
         const int f = s->act_f[i];
         double *u = s->u + 3 * f;
@@ -1014,13 +1016,6 @@ static gf_status step_split(gf_surface *s, double dt, int depth)
     return step_split(s, 0.5 * dt, depth + 1);
 }
 
-/* The start-up on refined meshes (gf_surface_config.startup_levels; see
- * granflow/surface.h).  Level l is the mesh refined l times; its faces map
- * to level l-1 through parent_face and to this mesh through froot, its edges
- * to this mesh's edges through eroot (-1 inside a face).  Level cl runs
- * until the fastest wave has travelled D / 2^(cl-1) and is then restricted to
- * level cl-1; level 1 ends at D on this mesh.  Between the caller's steps this mesh
- * holds the restriction of the running level (writes, peaks, volumes). */
 /* The halo of refined level l in a parallel run: its ghost sub-faces are
  * the neighbouring rank's sub-faces along the processor edges, 2^l per
  * coarse ghost in the order of gf_surface_mesh_refine, moved as one block
@@ -1053,6 +1048,13 @@ static int level_exchange(void *ctx, double *field, int ncomp)
     return 0;
 }
 
+/* The start-up on refined meshes (gf_surface_config.startup_levels; see
+ * granflow/surface.h).  Level l is the mesh refined l times; its faces map
+ * to level l-1 through parent_face and to this mesh through froot, its edges
+ * to this mesh's edges through eroot (-1 inside a face).  Level cl runs
+ * until the fastest wave has travelled D / 2^(cl-1) and is then restricted to
+ * level cl-1; level 1 ends at D on this mesh.  Between the caller's steps this mesh
+ * holds the restriction of the running level (writes, peaks, volumes). */
 struct gf_startup {
     int L, cl;
     double D;      /* the travel that ends level 1: 40 d */
