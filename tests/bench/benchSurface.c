@@ -17,7 +17,9 @@
  *   face-steps per CPU second (active faces summed over steps / CPU s).
  * A face-step is two SSP-RK2 stages: velocity, gradients and limiter (order
  * 2), HLL edge fluxes, the update with implicit friction, the step bound.
- *   gf_bench_surface [steps]     CSV on stdout
+ *   gf_bench_surface [steps [scene order friction]]     CSV on stdout
+ * (with scene, order and friction given, only that run: for profiling and
+ * paired timings)
  */
 #include "../surface_mesh.h"
 
@@ -92,20 +94,32 @@ int main(int argc, char **argv)
 {
     char *end = NULL;
     const long steps = argc > 1 ? strtol(argv[1], &end, 10) : 40;
-    if (argc > 2 || (argc > 1 && (end == argv[1] || *end != '\0')) || steps < 1 || steps > 1000000) {
-        fprintf(stderr, "usage: gf_bench_surface [steps]: steps an integer in 1..1000000 (default 40)\n");
+    const char *only_scene = argc == 5 ? argv[2] : NULL, *only_law = argc == 5 ? argv[4] : NULL;
+    const int only_order = argc == 5 ? atoi(argv[3]) : 0;
+    if ((argc != 1 && argc != 2 && argc != 5) || (argc > 1 && (end == argv[1] || *end != '\0')) || steps < 1 ||
+        steps > 1000000 || (only_scene && strcmp(only_scene, "wet") && strcmp(only_scene, "pile")) ||
+        (argc == 5 && only_order != 1 && only_order != 2)) {
+        fprintf(stderr, "usage: gf_bench_surface [steps [scene order friction]]: steps an integer in 1..1000000 "
+                        "(default 40), scene wet or pile, order 1 or 2, friction none, coulomb, mu_i, voellmy or "
+                        "samosAT\n");
         return 1;
     }
     static const int walls[4] = {GF_EDGE_WALL, GF_EDGE_WALL, GF_EDGE_WALL, GF_EDGE_WALL};
     static const char *const laws[] = {"none", "coulomb", "mu_i", "voellmy", "samosAT"};
     double zeta = 30 * GF_DEG;
     printf("scene,order,friction,faces,active_faces,steps,cpu_s,face_steps_per_s\n");
+    int ran = 0;
     for (int pile = 0; pile < 2; ++pile) {
+        if (only_scene && strcmp(only_scene, pile ? "pile" : "wet"))
+            continue;
         const size_t n = pile ? 400 : 200;
         const double half = pile ? 50.0 : 25.0;
         strip_mesh *sm = strip_mesh_new(n, n, 0, 2 * half, -half, half, const_zeta, &zeta, walls);
         for (int order = 1; order <= 2; ++order)
             for (size_t l = 0; l < sizeof laws / sizeof laws[0]; ++l) {
+                if (only_scene && (order != only_order || strcmp(only_law, laws[l])))
+                    continue;
+                ran = 1;
                 double best = HUGE_VAL;
                 unsigned long updates = 0;
                 size_t active = 0;
@@ -116,6 +130,10 @@ int main(int argc, char **argv)
                 fflush(stdout);
             }
         strip_mesh_free(sm);
+    }
+    if (!ran) {
+        fprintf(stderr, "gf_bench_surface: no friction law named '%s'\n", only_law);
+        return 1;
     }
     return 0;
 }

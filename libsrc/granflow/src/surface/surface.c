@@ -7,6 +7,17 @@
 #include <string.h>
 
 #define NV 4 /* reconstructed variables: h, u_x, u_y, u_z */
+/* per-edge geometry block (gf_surface.frame), built once by build_frames:
+ * [0..11] the frame nu, t, nu_L, nu_R; [12..14] length * edge normal (the
+ * Green–Gauss weight of the owner); [15..17], [18..20] edge centre minus
+ * owner / neighbour centre; [21], [22] length * nu . n_owner, length * nu .
+ * n_neighbour (the normal part of the edge pressure in eq. 33) */
+#define EG 24
+#define EG_LW 12
+#define EG_RO 15
+#define EG_RN 18
+#define EG_PO 21
+#define EG_PN 22
 
 struct gf_surface {
     gf_surface_mesh m;
@@ -22,7 +33,8 @@ struct gf_surface {
     /* face -> edges (all nt faces; a ghost has its one processor edge) */
     size_t *fe_start;
     int *fe;
-    /* edge frames: nu, t, nu_L (owner plane), nu_R (neighbour plane) */
+    /* per-edge geometry (EG doubles per edge): frame nu, t, nu_L (owner
+     * plane), nu_R (neighbour plane), and the kernels' precomputed vectors */
     double *frame;
     /* state and stage buffers (nt, 3 nt) */
     double *h, *mom, *h1, *m1, *h2, *m2;
@@ -30,6 +42,7 @@ struct gf_surface {
     double *u;    /* velocity of the stage state per face (3 nt; 0 where h <= h_dry) */
     double *pb;   /* n_faces */
     double *grad; /* 3 NV per face (nt) */
+    double *qlim; /* limiter scratch per owned face: 2 NV bounds, NV alphas */
     /* accumulators per owned face */
     double *acc_h, *acc_m, *acc_pn;
     /* per-edge fluxes */
@@ -100,7 +113,7 @@ void gf_surface_free(gf_surface *s)
         return;
     startup_free(s);
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->h,        s->mom,  s->h1,     s->m1,
-                    s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
+                    s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->qlim, s->acc_h,  s->acc_m,
                     s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn, s->dmn, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl};
@@ -172,7 +185,7 @@ static gf_status build_frames(gf_surface *s)
 {
     const gf_surface_mesh *m = &s->m;
     for (size_t e = 0; e < m->n_edges; ++e) {
-        double *fr = s->frame + 12 * e, ne[3];
+        double *fr = s->frame + EG * e, ne[3];
         const double *no = m->normal + 3 * m->owner[e];
         const double *nn = m->neighbour[e] >= 0 ? m->normal + 3 * m->neighbour[e] : no;
         for (int k = 0; k < 3; ++k)
@@ -191,6 +204,16 @@ static gf_status build_frames(gf_surface *s)
         cross3(t, nn, nur);
         if (normalise3(t) || normalise3(nul) || normalise3(nur))
             return gf_fail(GF_EDOM, "surface mesh: degenerate frame at edge %zu", e);
+        const double L = m->length[e], *xe = m->edge_centre + 3 * e, *xo = m->centre + 3 * m->owner[e];
+        const double *xn = m->neighbour[e] >= 0 ? m->centre + 3 * m->neighbour[e] : xo;
+        for (int k = 0; k < 3; ++k) {
+            fr[EG_LW + k] = L * m->edge_normal[3 * e + k];
+            fr[EG_RO + k] = xe[k] - xo[k];
+            fr[EG_RN + k] = xe[k] - xn[k];
+        }
+        fr[EG_PO] = L * dot3(nu, no);
+        fr[EG_PN] = L * dot3(nu, nn);
+        fr[EG - 1] = 0.0;
     }
     return GF_SUCCESS;
 }
@@ -215,7 +238,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     const size_t nt = s->nt = mesh->n_faces + mesh->n_ghosts, ne = mesh->n_edges, nf = mesh->n_faces;
     s->fe_start = calloc(nt + 1, sizeof *s->fe_start);
     s->fe = malloc((2 * ne + 1) * sizeof *s->fe);
-    s->frame = malloc((12 * ne + 1) * sizeof *s->frame);
+    s->frame = malloc((EG * ne + 1) * sizeof *s->frame);
     double **d3[] = {&s->mom, &s->m1, &s->m2, &s->u};
     for (int i = 0; i < 4; ++i)
         *d3[i] = calloc(3 * nt, sizeof(double));
@@ -224,6 +247,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
         *d1[i] = calloc(nt, sizeof(double));
     s->pb = calloc(nf, sizeof *s->pb);
     s->grad = calloc(3 * NV * nt, sizeof *s->grad);
+    s->qlim = malloc(3 * NV * nf * sizeof *s->qlim);
     s->acc_h = calloc(nf, sizeof *s->acc_h);
     s->acc_m = calloc(3 * nf, sizeof *s->acc_m);
     s->acc_pn = calloc(nf, sizeof *s->acc_pn);
@@ -250,7 +274,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
-        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn || !s->dmn || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
+        !s->a || !s->pb || !s->grad || !s->qlim || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn || !s->dmn || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
@@ -549,8 +573,7 @@ static void gradients(gf_surface *s, const double *H)
             const int e = s->fe[j];
             const int o = m->owner[e], n = m->neighbour[e];
             const double sgn = o == f ? 1.0 : -1.0;
-            const double *L = m->edge_normal + 3 * e;
-            const double w = sgn * m->length[e];
+            const double *L = s->frame + EG * e + EG_LW, w = sgn;
             double qe[NV];
             const int other = o == f ? n : o;
             if (other >= 0) {
@@ -587,12 +610,10 @@ static void gradients(gf_surface *s, const double *H)
             memset(G + 3, 0, 9 * sizeof *G);
         /* Barth–Jespersen */
         double alpha[NV] = {1.0, 1.0, 1.0, 1.0};
-        const double *xf = m->centre + 3 * f;
         for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
             const int e = s->fe[j];
-            const double *xe = m->edge_centre + 3 * e;
-            const double r[3] = {xe[0] - xf[0], xe[1] - xf[1], xe[2] - xf[2]};
-            const int other = m->owner[e] == f ? m->neighbour[e] : m->owner[e];
+            const int own = m->owner[e] == f, other = own ? m->neighbour[e] : m->owner[e];
+            const double *r = s->frame + EG * e + (own ? EG_RO : EG_RN);
             /* towards a dry neighbour the velocity is extrapolated, not
              * bounded: the thin tip of a front accelerates to u + 2c */
             const int nv = (other >= 0 && H[other] <= hd) ? 1 : NV;
@@ -615,17 +636,16 @@ static void gradients(gf_surface *s, const double *H)
 /* Side state at edge e of face f: h and velocity (3D) of the stage, linearly
  * reconstructed when rec == 1 (owned active faces and ghosts carry
  * gradients), the face values when rec == 0 or 2 (2: towards a dry face). */
-static inline void side_state(const gf_surface *s, const double *H, int f, int e, int rec, double *h,
+static inline void side_state(const gf_surface *s, const double *H, int f, const double *r, int rec, double *h,
                               double *u)
 {
     *h = H[f];
     memcpy(u, s->u + 3 * f, 3 * sizeof *u);
-    if (!rec)
+    /* rec == 2, edge towards a dry face: the face value, so that the
+     * limiter cannot reconstruct the tip of a front to zero */
+    if (rec != 1)
         return;
-    const double *G = s->grad + 3 * NV * f, *xf = s->m.centre + 3 * f, *xe = s->m.edge_centre + 3 * e;
-    const double r[3] = {xe[0] - xf[0], xe[1] - xf[1], xe[2] - xf[2]};
-    if (rec == 2) /* edge towards a dry face: the face value, so that the */
-        return;   /* limiter cannot reconstruct the tip of a front to zero */
+    const double *G = s->grad + 3 * NV * f; /* r: edge centre - face centre */
     *h += dot3(G, r);
     if (*h < 0.0) /* round-off of the limiter */
         *h = 0.0;
@@ -708,7 +728,7 @@ static inline double hydrostatic_pressure(const gf_surface *s, const double *H, 
 static void edge_flux(gf_surface *s, const double *H, int e, int order2)
 {
     const gf_surface_mesh *m = &s->m;
-    const double *fr = s->frame + 12 * e, *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
+    const double *fr = s->frame + EG * e, *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
     const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
     const unsigned st = s->stamp;
     double *fm = s->fm + 3 * e;
@@ -758,12 +778,12 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
         double hr, ur[3];
         const int rec = order2 && !s->first[e];
         const int dry_o = H[o] <= s->c.h_dry, dry_n = H[n] <= s->c.h_dry;
-        side_state(s, H, o, e, rec ? (dry_n ? 2 : 1) : 0, &hl, ul);
-        side_state(s, H, n, e, rec && ((size_t)n >= m->n_faces || s->mark_f[n] == st) ? (dry_o ? 2 : 1) : 0,
-                   &hr, ur);
+        side_state(s, H, o, fr + EG_RO, rec ? (dry_n ? 2 : 1) : 0, &hl, ul);
+        side_state(s, H, n, fr + EG_RN,
+                   rec && ((size_t)n >= m->n_faces || s->mark_f[n] == st) ? (dry_o ? 2 : 1) : 0, &hr, ur);
         hll(hl, dot3(ul, nul), dot3(ul, t), s->a[o], hr, dot3(ur, nur), dot3(ur, t), s->a[n], F, &fpress);
     } else {
-        side_state(s, H, o, e, order2 && !s->first[e], &hl, ul);
+        side_state(s, H, o, fr + EG_RO, order2 && !s->first[e], &hl, ul);
         const double un = dot3(ul, nul), ut = dot3(ul, t), p = 0.5 * s->a[o] * hl * hl;
         un_b = un, ut_b = ut;
         if (kind == GF_EDGE_WALL) { /* mirror state: no mass, pressure and reflection */
@@ -798,35 +818,42 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
         fm[k] = F[1] * nu[k] + F[2] * t[k];
 }
 
-static void accumulate(gf_surface *s)
+/* Edge e's fluxes into the accumulators of its owned active faces. */
+static inline void accumulate_edge(gf_surface *s, int e)
 {
     const gf_surface_mesh *m = &s->m;
-    const size_t nf = m->n_faces;
+    const int o = m->owner[e], n = m->neighbour[e];
+    const double L = m->length[e], *fm = s->fm + 3 * e, *fr = s->frame + EG * e;
+    const unsigned st = s->stamp;
+    if (s->mark_f[o] == st) {
+        s->acc_h[o] += L * s->fh[e];
+        s->acc_pn[o] += s->fp[e] * fr[EG_PO];
+        for (int k = 0; k < 3; ++k)
+            s->acc_m[3 * o + k] += L * fm[k];
+    }
+    if (n >= 0 && (size_t)n < m->n_faces && s->mark_f[n] == st) {
+        const double dq = s->dmn[e];
+        s->acc_h[n] -= L * s->fh[e];
+        s->acc_pn[n] -= (s->fp[e] + s->dpn[e]) * fr[EG_PN];
+        for (int k = 0; k < 3; ++k)
+            s->acc_m[3 * n + k] -= L * (fm[k] + dq * fr[k]);
+    }
+}
+
+static void clear_accumulators(gf_surface *s)
+{
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
         s->acc_h[f] = s->acc_pn[f] = 0.0;
         s->acc_m[3 * f] = s->acc_m[3 * f + 1] = s->acc_m[3 * f + 2] = 0.0;
     }
-    const unsigned st = s->stamp;
-    for (size_t i = 0; i < s->n_act_e; ++i) {
-        const int e = s->act_e[i];
-        const int o = m->owner[e], n = m->neighbour[e];
-        const double L = m->length[e], *fm = s->fm + 3 * e, *nu = s->frame + 12 * e;
-        if (s->mark_f[o] == st) {
-            s->acc_h[o] += L * s->fh[e];
-            s->acc_pn[o] += L * s->fp[e] * dot3(nu, m->normal + 3 * o);
-            for (int k = 0; k < 3; ++k)
-                s->acc_m[3 * o + k] += L * fm[k];
-        }
-        if (n >= 0 && (size_t)n < nf && s->mark_f[n] == st) {
-            const double dp = s->dpn[e];
-            s->acc_h[n] -= L * s->fh[e];
-            const double dq = s->dmn[e];
-            s->acc_pn[n] -= L * (s->fp[e] + dp) * dot3(nu, m->normal + 3 * n);
-            for (int k = 0; k < 3; ++k)
-                s->acc_m[3 * n + k] -= L * (fm[k] + dq * nu[k]);
-        }
-    }
+}
+
+static void accumulate(gf_surface *s)
+{
+    clear_accumulators(s);
+    for (size_t i = 0; i < s->n_act_e; ++i)
+        accumulate_edge(s, s->act_e[i]);
 }
 
 /* One forward-Euler stage with implicit friction: (H, M) -> (Ho, Mo). */
@@ -867,13 +894,17 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         if ((st = exchange(s, s->grad, 3 * NV)))
             return st;
     }
-    for (size_t i = 0; i < s->n_act_e; ++i)
-        s->first[s->act_e[i]] = 0;
-    for (size_t i = 0; i < s->n_act_e; ++i)
-        edge_flux(s, H, s->act_e[i], order2);
+    clear_accumulators(s);
+    for (size_t i = 0; i < s->n_act_e; ++i) {
+        const int e = s->act_e[i];
+        s->first[e] = 0;
+        edge_flux(s, H, e, order2);
+        accumulate_edge(s, e);
+    }
     const double tiny = 1e-13 * s->h_scale;
     for (int pass = 0;; ++pass) {
-        accumulate(s);
+        if (pass > 0)
+            accumulate(s);
         int bad = 0;
         for (size_t i = 0; i < s->n_act_owned; ++i) {
             const int f = s->act_f[i];
@@ -1362,7 +1393,7 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i];
         const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
-        const double *fr = s->frame + 12 * e;
+        const double *fr = s->frame + EG * e;
         double uo[3];
         velocity(s, s->h, s->mom, o, uo);
         const double hl = s->h[o], ul = dot3(uo, fr + 6), cl = sqrt(s->a[o] * hl);
