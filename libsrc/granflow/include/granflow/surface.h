@@ -173,8 +173,13 @@ typedef int (*gf_surface_edge_exchange_fn)(void *ctx, const double *send, double
 void gf_surface_set_edge_exchange(gf_surface *s, gf_surface_edge_exchange_fn fn, void *ctx);
 
 /* Global minimum over all ranks of each of v[0..n-1], in place; 0 on
- * success.  Needed by startup_levels > 0 in a parallel run (the start-up's
- * length and the refined meshes' steps are the same on every rank). */
+ * success.  Needed by every parallel run (ghost faces): the ranks agree on
+ * the positivity fallback of each stage (which faces' edges are recomputed
+ * at first order, whether the step is halved), on the scale of its
+ * tolerance, and with startup_levels > 0 on the start-up's length and the
+ * refined meshes' steps.  With it a decomposed run takes the serial run's
+ * decisions, and its state equals the serial one to round-off (bitwise
+ * when each face lists its edges in the serial order). */
 typedef int (*gf_surface_min_fn)(void *ctx, double *v, int n);
 void gf_surface_set_min(gf_surface *s, gf_surface_min_fn fn, void *ctx);
 

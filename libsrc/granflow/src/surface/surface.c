@@ -42,12 +42,14 @@ struct gf_surface {
     double *u;    /* velocity of the stage state per face (3 nt; 0 where h <= h_dry) */
     double *pb;   /* n_faces */
     double *grad; /* 3 NV per face (nt) */
-    double *qlim; /* limiter scratch per owned face: 2 NV bounds, NV alphas */
     /* accumulators per owned face */
     double *acc_h, *acc_m, *acc_pn;
     /* per-edge fluxes */
-    double *fh, *fm, *fp, *dpn; /* dpn: extra pressure on the neighbour side (static edges) */
-    double *dmn;      /* extra momentum pressure along nu on the neighbour side (static edges) */
+    /* per-edge fluxes per unit length: mass fh; momentum fm, fmn and the
+     * pressure part along nu fp, fpn as the owner and the neighbour feel
+     * them (they differ on static edges only) */
+    double *fh, *fm, *fmn, *fp, *fpn;
+    double *spd; /* per edge: HLL speeds s_L, s_R of the step bound */
     double *ahyd;     /* hydrostatic normal acceleration max(0, -g.n) per face (nt) */
     unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt) */
     unsigned char *slow; /* |u| < dt |g| this stage (nt) */
@@ -113,8 +115,8 @@ void gf_surface_free(gf_surface *s)
         return;
     startup_free(s);
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->h,        s->mom,  s->h1,     s->m1,
-                    s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->qlim, s->acc_h,  s->acc_m,
-                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->dpn, s->dmn, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
+                    s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
+                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->fmn, s->fpn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
@@ -247,15 +249,15 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
         *d1[i] = calloc(nt, sizeof(double));
     s->pb = calloc(nf, sizeof *s->pb);
     s->grad = calloc(3 * NV * nt, sizeof *s->grad);
-    s->qlim = malloc(3 * NV * nf * sizeof *s->qlim);
     s->acc_h = calloc(nf, sizeof *s->acc_h);
     s->acc_m = calloc(3 * nf, sizeof *s->acc_m);
     s->acc_pn = calloc(nf, sizeof *s->acc_pn);
     s->fh = calloc(ne + 1, sizeof *s->fh);
     s->fm = calloc(3 * ne + 1, sizeof *s->fm);
     s->fp = calloc(ne + 1, sizeof *s->fp);
-    s->dpn = calloc(ne + 1, sizeof *s->dpn);
-    s->dmn = calloc(ne + 1, sizeof *s->dmn);
+    s->fmn = calloc(3 * ne + 1, sizeof *s->fmn);
+    s->fpn = calloc(ne + 1, sizeof *s->fpn);
+    s->spd = calloc(2 * ne + 1, sizeof *s->spd);
     s->ahyd = calloc(nt, sizeof *s->ahyd);
     s->stat = calloc(nt, 1);
     s->slow = calloc(nt, 1);
@@ -274,7 +276,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
-        !s->a || !s->pb || !s->grad || !s->qlim || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->dpn || !s->dmn || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
+        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->fmn || !s->fpn || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
@@ -332,7 +334,7 @@ static gf_status global_min(gf_surface *s, double *v, int n)
     if (s->m.n_ghosts == 0 && !s->minfn)
         return GF_SUCCESS;
     if (!s->minfn)
-        return gf_fail(GF_EINVAL, "surface scheme: startup_levels in a parallel run needs gf_surface_set_min");
+        return gf_fail(GF_EINVAL, "surface scheme: a parallel run (ghost faces) needs gf_surface_set_min");
     if (s->minfn(s->minctx, v, n))
         return gf_fail(GF_EIO, "surface scheme: the global minimum failed");
     return GF_SUCCESS;
@@ -397,6 +399,10 @@ static gf_status load_state(gf_surface *s, const double *h, const double *mom, c
         s->a[f] = gn > 0.0 ? gn : 0.0;
     }
     gf_status st;
+    double hs = -s->h_scale; /* the positivity tolerance's scale: the same on every rank */
+    if ((st = global_min(s, &hs, 1)))
+        return st;
+    s->h_scale = -hs;
     if ((st = exchange(s, s->h, 1)) || (st = exchange(s, s->mom, 3)) || (st = exchange(s, s->a, 1)))
         return st;
     /* stage buffers equal to the state everywhere (as for faces that leave
@@ -668,7 +674,9 @@ static inline void hll_speeds(double hl, double ul, double cl, double hr, double
         *sl = ul - cl;
         *sr = ul + 2.0 * cl;
     } else {
-        const double us = 0.5 * (ul + ur) + cl - cr, cs = gmax(0.0, 0.5 * (cl + cr) + 0.25 * (ul - ur));
+        /* written so that swapping the sides (ul, ur -> -ur, -ul) gives
+         * exactly (-sr, -sl): a processor edge's two ranks agree bitwise */
+        const double us = 0.5 * (ul + ur) + (cl - cr), cs = gmax(0.0, 0.5 * (cl + cr) + 0.25 * (ul - ur));
         *sl = gmin(gmin(ul - cl, ur - cr), us - cs);
         *sr = gmax(gmax(ul + cl, ur + cr), us + cs);
     }
@@ -769,10 +777,13 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
             const double fh = H[up] * vm;
             s->fh[e] = fh;
             s->fp[e] = po;
-            s->dpn[e] = pn - po;
-            s->dmn[e] = qn - qo;
-            for (int k = 0; k < 3; ++k)
-                fm[k] = fh * (unu * nu[k] + ut * t[k]) + qo * nu[k];
+            s->fpn[e] = pn;
+            double *fmn = s->fmn + 3 * e;
+            for (int k = 0; k < 3; ++k) {
+                const double adv = fh * (unu * nu[k] + ut * t[k]);
+                fm[k] = adv + qo * nu[k];
+                fmn[k] = adv + qn * nu[k];
+            }
             return;
         }
         double hr, ur[3];
@@ -805,7 +816,7 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
     }
     s->fh[e] = F[0];
     s->fp[e] = fpress;
-    s->dpn[e] = s->dmn[e] = 0.0;
+    s->fpn[e] = fpress;
     if (kind != GF_EDGE_INTERNAL && s->stat[o]) {
         /* a wall (or an outflow edge nothing leaves) of a face in the
          * hydrostatic mode: the hydrostatic ghost (delta = 0), no force
@@ -814,46 +825,43 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
             fm[k] = F[0] * (un_b * nu[k] + ut_b * t[k]);
         return;
     }
+    double *fmn = s->fmn + 3 * e;
     for (int k = 0; k < 3; ++k)
-        fm[k] = F[1] * nu[k] + F[2] * t[k];
+        fmn[k] = fm[k] = F[1] * nu[k] + F[2] * t[k];
 }
 
-/* Edge e's fluxes into the accumulators of its owned active faces. */
-static inline void accumulate_edge(gf_surface *s, int e)
-{
-    const gf_surface_mesh *m = &s->m;
-    const int o = m->owner[e], n = m->neighbour[e];
-    const double L = m->length[e], *fm = s->fm + 3 * e, *fr = s->frame + EG * e;
-    const unsigned st = s->stamp;
-    if (s->mark_f[o] == st) {
-        s->acc_h[o] += L * s->fh[e];
-        s->acc_pn[o] += s->fp[e] * fr[EG_PO];
-        for (int k = 0; k < 3; ++k)
-            s->acc_m[3 * o + k] += L * fm[k];
-    }
-    if (n >= 0 && (size_t)n < m->n_faces && s->mark_f[n] == st) {
-        const double dq = s->dmn[e];
-        s->acc_h[n] -= L * s->fh[e];
-        s->acc_pn[n] -= (s->fp[e] + s->dpn[e]) * fr[EG_PN];
-        for (int k = 0; k < 3; ++k)
-            s->acc_m[3 * n + k] -= L * (fm[k] + dq * fr[k]);
-    }
-}
-
-static void clear_accumulators(gf_surface *s)
-{
-    for (size_t i = 0; i < s->n_act_owned; ++i) {
-        const int f = s->act_f[i];
-        s->acc_h[f] = s->acc_pn[f] = 0.0;
-        s->acc_m[3 * f] = s->acc_m[3 * f + 1] = s->acc_m[3 * f + 2] = 0.0;
-    }
-}
-
+/* The edge fluxes summed per owned active face, over its edges in the
+ * order of the mesh (gathered, not scattered: the sum's rounding does not
+ * depend on which faces are active or on how the mesh is decomposed).  The
+ * owner takes + L (fh, fm, fp nu.n), the neighbour - L (fh, fmn, fpn nu.n),
+ * so a processor edge, owned on both of its ranks, gives each side what the
+ * serial mesh gives it (the edge frame and HLL are antisymmetric). */
 static void accumulate(gf_surface *s)
 {
-    clear_accumulators(s);
-    for (size_t i = 0; i < s->n_act_e; ++i)
-        accumulate_edge(s, s->act_e[i]);
+    const gf_surface_mesh *m = &s->m;
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
+        double ah = 0.0, ap = 0.0, am[3] = {0.0, 0.0, 0.0};
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j];
+            const double L = m->length[e], *fr = s->frame + EG * e;
+            if (m->owner[e] == f) {
+                const double *fm = s->fm + 3 * e;
+                ah += L * s->fh[e];
+                ap += s->fp[e] * fr[EG_PO];
+                for (int k = 0; k < 3; ++k)
+                    am[k] += L * fm[k];
+            } else {
+                const double *fm = s->fmn + 3 * e;
+                ah -= L * s->fh[e];
+                ap -= s->fpn[e] * fr[EG_PN];
+                for (int k = 0; k < 3; ++k)
+                    am[k] -= L * fm[k];
+            }
+        }
+        s->acc_h[f] = ah, s->acc_pn[f] = ap;
+        memcpy(s->acc_m + 3 * f, am, sizeof am);
+    }
 }
 
 /* One forward-Euler stage with implicit friction: (H, M) -> (Ho, Mo). */
@@ -894,25 +902,38 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         if ((st = exchange(s, s->grad, 3 * NV)))
             return st;
     }
-    clear_accumulators(s);
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i];
         s->first[e] = 0;
         edge_flux(s, H, e, order2);
-        accumulate_edge(s, e);
     }
+    /* Positivity: a face whose thickness would fall below 0 has its edges
+     * recomputed at first order (up to 3 passes), one that still would
+     * (or any at order 1) fails the stage, and the step is halved.  In
+     * parallel every rank takes the same decisions as the serial run: a
+     * face's mark reaches the ranks that hold its processor edges (their
+     * ghost), and whether to pass again or fail is decided over all ranks,
+     * so that their exchanges stay paired and an edge's two copies carry one
+     * flux. */
     const double tiny = 1e-13 * s->h_scale;
+    double *badf = s->lvl; /* per face: marked this pass (scratch, exchanged) */
+    const int par = s->m.n_ghosts > 0 || s->minfn;
     for (int pass = 0;; ++pass) {
-        if (pass > 0)
-            accumulate(s);
-        int bad = 0;
+        accumulate(s);
+        int bad = 0, fail = 0, fail_f = -1;
+        double fail_h = 0.0;
+        if (par)
+            memset(badf, 0, m->n_faces * sizeof *badf);
         for (size_t i = 0; i < s->n_act_owned; ++i) {
             const int f = s->act_f[i];
             const double hn = H[f] - dt / m->area[f] * s->acc_h[f];
             if (hn < -tiny || (hn < 0.0 && pass < 3 && order2)) {
-                if (pass >= 3 || !order2)
-                    return gf_fail(GF_EPHYS, "surface scheme: thickness %g in face %d after a step of %g s; "
-                                             "lower the Courant number", hn, f, dt);
+                if (pass >= 3 || !order2) {
+                    if (!fail)
+                        fail = 1, fail_f = f, fail_h = hn;
+                    continue;
+                }
+                badf[f] = 1.0;
                 for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
                     const int e = s->fe[j];
                     if (!s->first[e]) {
@@ -924,8 +945,32 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
                 bad = 1;
             }
         }
+        if (par) {
+            double v[2] = {fail ? -1.0 : 0.0, bad ? -1.0 : 0.0};
+            if ((st = global_min(s, v, 2)))
+                return st;
+            if (v[0] < 0.0 && !fail)
+                return gf_fail(GF_EPHYS, "surface scheme: a thickness below 0 on another rank after a step of "
+                                         "%g s; lower the Courant number", dt);
+            bad = v[1] < 0.0;
+        }
+        if (fail)
+            return gf_fail(GF_EPHYS, "surface scheme: thickness %g in face %d after a step of %g s; "
+                                     "lower the Courant number", fail_h, fail_f, dt);
         if (!bad)
             break;
+        if (par) { /* processor edges of faces marked on the other side */
+            if ((st = exchange(s, badf, 1)))
+                return st;
+            for (size_t i = 0; i < s->n_act_e; ++i) {
+                const int e = s->act_e[i], n = m->neighbour[e];
+                if (n >= 0 && (size_t)n >= m->n_faces && badf[n] > 0.0 && !s->first[e]) {
+                    s->first[e] = 1;
+                    s->st.first_order_edges++;
+                    edge_flux(s, H, e, order2);
+                }
+            }
+        }
     }
     /* boundary volumes of this stage */
     for (size_t i = 0; i < s->n_act_e; ++i) {
@@ -1380,16 +1425,12 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
         (!s->active_fresh && (st = build_active(s))))
         return st;
     const gf_surface_mesh *m = &s->m;
-    const size_t nf = m->n_faces;
     /* Positivity of the first-order update: the volume leaving face f through
      * edge e in dt is at most dt L_e h_f s_out, s_out = max(0, s_R) for the
      * owner and max(0, -s_L) for the neighbour (HLL's outgoing wave speeds of
      * the first-order states); Co = dt sum_e L_e s_out / (2 A) <= 1/2 keeps
      * h >= 0.  A wall's mirror state and an outflow's extrapolated state give
      * the same bounds with u_R = -u_L or u_R = u_L. */
-    double *out = s->acc_pn; /* scratch per owned face */
-    for (size_t i = 0; i < s->n_act_owned; ++i)
-        out[s->act_f[i]] = 0.0;
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i];
         const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
@@ -1408,19 +1449,19 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
             const double *b = s->inflow + 4 * e;
             hr = b[0], ur = dot3(b + 1, fr + 6), cr = sqrt(s->a[o] * hr);
         }
-        double sl, sr;
-        hll_speeds(hl, ul, cl, hr, ur, cr, &sl, &sr);
-        const double L = m->length[e];
-        if (s->mark_f[o] == s->stamp)
-            out[o] += L * gmax(0.0, sr);
-        if (n >= 0 && (size_t)n < nf && s->mark_f[n] == s->stamp)
-            out[n] += L * gmax(0.0, -sl);
+        hll_speeds(hl, ul, cl, hr, ur, cr, s->spd + 2 * e, s->spd + 2 * e + 1);
     }
+    /* per face, over its edges in mesh order (as accumulate) */
     double best = HUGE_VAL;
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
-        if (out[f] > 0.0)
-            best = gmin(best, 2.0 * s->c.courant * m->area[f] / out[f]);
+        double out = 0.0;
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j];
+            out += m->length[e] * (m->owner[e] == f ? gmax(0.0, s->spd[2 * e + 1]) : gmax(0.0, -s->spd[2 * e]));
+        }
+        if (out > 0.0)
+            best = gmin(best, 2.0 * s->c.courant * m->area[f] / out);
     }
     *dt = best;
     return GF_SUCCESS;
