@@ -1250,6 +1250,7 @@ static gf_status startup_begin(gf_surface *s, double D)
             break;
         if (mm->n_ghosts > 0)
             gf_surface_set_exchange(u->sol[l], level_exchange, &u->halo[l]);
+        gf_surface_set_min(u->sol[l], s->minfn, s->minctx); /* the levels' positivity decisions */
     }
     if (st)
         return st;
