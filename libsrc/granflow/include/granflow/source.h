@@ -30,6 +30,9 @@ extern "C" {
  * beta h^2/2 of the dimensionless Savage–Hutter equations (rkdg eq. 1;
  * kinetic paper eq. 1 with K the earth-pressure coefficient). */
 double gf_sh_beta(double epsilon, double k, double zeta);
+/* the same from cos(zeta) (solvers that evaluate it once per point of a
+ * fixed bed) */
+double gf_sh_beta_c(double epsilon, double k, double cos_zeta);
 
 /* Net acceleration of moving material g sin(zeta) - sgn(u) r, with r >= 0 the
  * friction deceleration tau/(rho h) of any law (rkdg eq. 2 for Coulomb);
@@ -44,6 +47,8 @@ double gf_sh_clamp_static(double g_sin_zeta, double r, double beta_dhdx);
 /* Normal (bed-normal) acceleration max(0, g cos(zeta) + c u^2): basal
  * pressure divided by density and thickness, p_b / (rho h). */
 double gf_sh_normal_acceleration(double g, double zeta, double curv, double u);
+/* the same from cos(zeta) */
+double gf_sh_normal_acceleration_c(double g, double cos_zeta, double curv, double u);
 
 /* s(u) of rkdg eq. (2) for u != 0; for u == 0 returns the gravity part
  * g sin(zeta) only (use gf_sh_static_source for the bounded static value). */

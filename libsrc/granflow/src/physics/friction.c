@@ -256,14 +256,18 @@ gf_status gf_friction_eval(const gf_friction *f, const gf_friction_state *s, gf_
 {
     if (!f || !f->type || !s || !r)
         return gf_fail(GF_EINVAL, "gf_friction_eval: null argument or uninitialised law");
-    gf_status st;
-    if ((st = gf_check_range("flow thickness h", s->h, 0.0, HUGE_VAL)) ||
-        (st = gf_check_range("speed |u|", s->speed, 0.0, HUGE_VAL)) ||
-        (st = gf_check_range("density rho", s->rho, 1e-300, HUGE_VAL)) ||
-        (st = gf_check_range("gravity g", s->g, 0.0, HUGE_VAL)))
-        return st;
-    if (!isfinite(s->pb))
+    /* one test on the hot path (the 1D solvers call this per quadrature
+     * point and stage), the named checks only on failure */
+    if (!(s->h >= 0.0 && s->h < HUGE_VAL && s->speed >= 0.0 && s->speed < HUGE_VAL && s->rho >= 1e-300 &&
+          s->rho < HUGE_VAL && s->g >= 0.0 && s->g < HUGE_VAL && isfinite(s->pb))) {
+        gf_status st;
+        if ((st = gf_check_range("flow thickness h", s->h, 0.0, HUGE_VAL)) ||
+            (st = gf_check_range("speed |u|", s->speed, 0.0, HUGE_VAL)) ||
+            (st = gf_check_range("density rho", s->rho, 1e-300, HUGE_VAL)) ||
+            (st = gf_check_range("gravity g", s->g, 0.0, HUGE_VAL)))
+            return st;
         return gf_fail(GF_ENONFINITE, "basal pressure p_b = %g is not a finite number", s->pb);
+    }
     f->type->eval(f->p, s, r);
     r->mu = s->pb > 0.0 ? r->tau / (s->pb / s->rho) : 0.0;
     return GF_SUCCESS;

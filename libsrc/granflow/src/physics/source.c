@@ -3,7 +3,8 @@
 
 #include <math.h>
 
-double gf_sh_beta(double epsilon, double k, double zeta) { return epsilon * k * cos(zeta); }
+double gf_sh_beta_c(double epsilon, double k, double cos_zeta) { return epsilon * k * cos_zeta; }
+double gf_sh_beta(double epsilon, double k, double zeta) { return gf_sh_beta_c(epsilon, k, cos(zeta)); }
 
 double gf_sh_moving_accel(double g_sin_zeta, double r, double u)
 {
@@ -17,10 +18,15 @@ double gf_sh_clamp_static(double g_sin_zeta, double r, double beta_dhdx)
     return fmin(g_sin_zeta + r, fmax(beta_dhdx, g_sin_zeta - r));
 }
 
+double gf_sh_normal_acceleration_c(double g, double cos_zeta, double curv, double u)
+{
+    const double a = g * cos_zeta + curv * u * u;
+    return a > 0.0 ? a : 0.0;
+}
+
 double gf_sh_normal_acceleration(double g, double zeta, double curv, double u)
 {
-    const double a = g * cos(zeta) + curv * u * u;
-    return a > 0.0 ? a : 0.0;
+    return gf_sh_normal_acceleration_c(g, cos(zeta), curv, u);
 }
 
 double gf_sh_driving(double g, double zeta, double curv, double mu, double u)

@@ -30,6 +30,8 @@ typedef struct dg {
     unsigned char *moving0;     /* M_j at the start of a step, to repeat it, nc */
     double *zg, *kg;            /* zeta, kappa at Gauss points, nc * ng */
     double *zf;                 /* zeta at interfaces, n + 1 */
+    double *czg, *szg;          /* cos, sin of zeta at Gauss points (the bed is fixed) */
+    double *czf;                /* cos of zeta at interfaces */
     double *fh, *fqx;           /* interface fluxes, n + 1 */
 } dg;
 
@@ -74,7 +76,7 @@ static gf_status dg_init(gf_sh1d *s)
 
     const size_t n = s->n, nc = n + 2, M = (size_t)d->m, G = (size_t)d->ng;
     d->nc = nc;
-    const size_t total = 10 * nc * M + 3 * nc + 2 * nc * G + 3 * (n + 1);
+    const size_t total = 10 * nc * M + 3 * nc + 4 * nc * G + 4 * (n + 1);
     double *blk = calloc(total, sizeof *blk);
     unsigned char *flags = calloc(3 * nc, 1);
     if (!blk || !flags) {
@@ -100,6 +102,9 @@ static gf_status dg_init(gf_sh1d *s)
     d->zg = p; p += nc * G;
     d->kg = p; p += nc * G;
     d->zf = p; p += n + 1;
+    d->czf = p; p += n + 1;
+    d->czg = p; p += nc * G;
+    d->szg = p; p += nc * G;
     d->fh = p; p += n + 1;
     d->fqx = p;
     d->moving = flags;
@@ -115,6 +120,11 @@ static gf_status dg_init(gf_sh1d *s)
     for (size_t f = 0; f <= n; ++f) {
         double kap;
         gf_sh1d_bed(s, s->cfg.x_min + (double)f * s->dx, &d->zf[f], &kap);
+        d->czf[f] = cos(d->zf[f]);
+    }
+    for (size_t i = 0; i < nc * G; ++i) {
+        d->czg[i] = cos(d->zg[i]);
+        d->szg[i] = sin(d->zg[i]);
     }
     for (size_t c = 0; c < nc; ++c)
         d->k[c] = 1.0;
@@ -220,7 +230,7 @@ static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
         double hl, ul, hr, ur;
         point_state(s, right_value(&h[f * M], M), right_value(&q[f * M], M), &hl, &ul);
         point_state(s, left_value(&h[(f + 1) * M], M), left_value(&q[(f + 1) * M], M), &hr, &ur);
-        const double bl = gf_sh_beta(eps, d->k[f], d->zf[f]), br = gf_sh_beta(eps, d->k[f + 1], d->zf[f]);
+        const double bl = gf_sh_beta_c(eps, d->k[f], d->czf[f]), br = gf_sh_beta_c(eps, d->k[f + 1], d->czf[f]);
         const double cl = sqrt(bl * hl), cr = sqrt(br * hr);
         const double al = fabs(ul) + cl, ar = fabs(ur) + cr;
         const double alpha = al > ar ? al : ar;
@@ -243,13 +253,13 @@ static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
         double vh[MAXM] = {0}, vq[MAXM] = {0}, sq[MAXM] = {0}, fr[MAXM] = {0};
         double cap = 0.0;
         for (int g = 0; g < G; ++g) {
-            const double zeta = d->zg[c * G + g], kap = d->kg[c * G + g];
+            const double cz = d->czg[c * G + g], sz = d->szg[c * G + g], kap = d->kg[c * G + g];
             double hp, up;
             point_state(s, poly(hc, M, d->xg[g]), poly(qc, M, d->xg[g]), &hp, &up);
-            const double beta = gf_sh_beta(eps, d->k[c], zeta);
+            const double beta = gf_sh_beta_c(eps, d->k[c], cz);
             const double f1 = hp * up, f2 = hp * up * up + 0.5 * beta * hp * hp;
-            const double src = hp * grav * sin(zeta);
-            const double tau = gf_sh1d_friction(s, hp, up, zeta, kap);
+            const double src = hp * grav * sz;
+            const double tau = gf_sh1d_friction_c(s, hp, up, cz, kap);
             const double w = d->wg[g];
             const double sgn = up > 0.0 ? 1.0 : (up < 0.0 ? -1.0 : 0.0);
             cap += 0.5 * w * tau;
@@ -531,7 +541,7 @@ static double dg_max_dt(const gf_sh1d *s)
         const double *hc = &d->h[c * (size_t)M], *qc = &d->q[c * (size_t)M];
         if (hc[0] <= s->cfg.h_eps)
             continue;
-        const double beta = gf_sh_beta(s->cfg.epsilon, d->k[c], d->zg[c * (size_t)d->ng]);
+        const double beta = gf_sh_beta_c(s->cfg.epsilon, d->k[c], d->czg[c * (size_t)d->ng]);
         double hp, up;
         point_state(s, right_value(hc, M), right_value(qc, M), &hp, &up);
         amax = fmax(amax, fabs(up) + sqrt(beta * hp));

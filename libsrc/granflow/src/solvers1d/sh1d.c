@@ -399,9 +399,14 @@ double gf_sh1d_beta(const gf_sh1d *s, double zeta, double dudx)
 
 double gf_sh1d_friction(const gf_sh1d *s, double h, double u, double zeta, double kappa)
 {
+    return gf_sh1d_friction_c(s, h, u, cos(zeta), kappa);
+}
+
+double gf_sh1d_friction_c(const gf_sh1d *s, double h, double u, double cos_zeta, double kappa)
+{
     if (h <= s->cfg.h_eps)
         return 0.0;
-    const double n = gf_sh_normal_acceleration(s->cfg.g, zeta, s->cfg.chi * kappa, u);
+    const double n = gf_sh_normal_acceleration_c(s->cfg.g, cos_zeta, s->cfg.chi * kappa, u);
     const gf_friction_state st = {h, fabs(u), s->cfg.rho * h * n, s->cfg.rho, s->cfg.g};
     gf_friction_result r;
     if (gf_friction_eval(&s->cfg.friction, &st, &r) != GF_SUCCESS)

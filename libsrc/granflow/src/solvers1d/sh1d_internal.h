@@ -43,6 +43,8 @@ double gf_sh1d_beta(const gf_sh1d *s, double zeta, double dudx);
 
 /* Basal friction per unit density |tau_b|/rho >= 0 at depth h, velocity u. */
 double gf_sh1d_friction(const gf_sh1d *s, double h, double u, double zeta, double kappa);
+/* the same from cos(zeta) */
+double gf_sh1d_friction_c(const gf_sh1d *s, double h, double u, double cos_zeta, double kappa);
 
 /* Static friction bound at rest, per unit density: the law with u0 = 0 at
  * speed 0 (mu h g cos(zeta) for Coulomb). */
