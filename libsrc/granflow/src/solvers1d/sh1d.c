@@ -404,7 +404,7 @@ double gf_sh1d_friction(const gf_sh1d *s, double h, double u, double zeta, doubl
 
 double gf_sh1d_friction_c(const gf_sh1d *s, double h, double u, double cos_zeta, double kappa)
 {
-    if (h <= s->cfg.h_eps)
+    if (h <= s->cfg.h_eps || s->cfg.friction.type == gf_friction_none)
         return 0.0;
     const double n = gf_sh_normal_acceleration_c(s->cfg.g, cos_zeta, s->cfg.chi * kappa, u);
     const gf_friction_state st = {h, fabs(u), s->cfg.rho * h * n, s->cfg.rho, s->cfg.g};
