@@ -565,77 +565,85 @@ static void gradients(gf_surface *s, const double *H)
 {
     const gf_surface_mesh *m = &s->m;
     const double hd = s->c.h_dry;
+    const int *own = m->owner, *nbr = m->neighbour;
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
-        double *G = s->grad + 3 * NV * f;
-        memset(G, 0, 3 * NV * sizeof *G);
-        double q[NV], qmin[NV], qmax[NV];
-        q[0] = H[f];
-        memcpy(q + 1, s->u + 3 * f, 3 * sizeof *q);
-        const int wet = H[f] > hd;
-        for (int v = 0; v < NV; ++v)
-            qmin[v] = qmax[v] = q[v];
-        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+        const double h0 = H[f], *u0 = s->u + 3 * f;
+        const int wet = h0 > hd;
+        /* G[0..2] grad h, G[3 + 3 c + k] d u_c / d x_k */
+        double G[3 * NV] = {0.0};
+        double hmin = h0, hmax = h0;
+        double umin[3] = {u0[0], u0[1], u0[2]}, umax[3] = {u0[0], u0[1], u0[2]};
+        const size_t j0 = s->fe_start[f], j1 = s->fe_start[f + 1];
+        for (size_t j = j0; j < j1; ++j) {
             const int e = s->fe[j];
-            const int o = m->owner[e], n = m->neighbour[e];
-            const double sgn = o == f ? 1.0 : -1.0;
-            const double *L = s->frame + EG * e + EG_LW, w = sgn;
-            double qe[NV];
-            const int other = o == f ? n : o;
+            const int other = own[e] == f ? nbr[e] : own[e];
+            const double *lw = s->frame + EG * e + EG_LW, w = own[e] == f ? 1.0 : -1.0;
+            double he = h0, ue[3] = {u0[0], u0[1], u0[2]};
             if (other >= 0) {
-                double qn[NV];
-                qn[0] = H[other];
-                memcpy(qn + 1, s->u + 3 * other, 3 * sizeof *qn);
-                const int nwet = H[other] > hd;
-                qe[0] = 0.5 * (q[0] + qn[0]);
-                qmin[0] = gmin(qmin[0], qn[0]);
-                qmax[0] = gmax(qmax[0], qn[0]);
-                for (int v = 1; v < NV; ++v) {
-                    if (nwet && wet) {
-                        qe[v] = 0.5 * (q[v] + qn[v]);
-                        qmin[v] = gmin(qmin[v], qn[v]);
-                        qmax[v] = gmax(qmax[v], qn[v]);
-                    } else
-                        qe[v] = q[v];
+                const double hn = H[other];
+                he = 0.5 * (h0 + hn);
+                hmin = gmin(hmin, hn);
+                hmax = gmax(hmax, hn);
+                if (wet && hn > hd) {
+                    const double *un = s->u + 3 * other;
+                    for (int c = 0; c < 3; ++c) {
+                        ue[c] = 0.5 * (u0[c] + un[c]);
+                        umin[c] = gmin(umin[c], un[c]);
+                        umax[c] = gmax(umax[c], un[c]);
+                    }
                 }
-            } else
-                memcpy(qe, q, sizeof qe);
-            for (int v = 0; v < NV; ++v)
-                for (int k = 0; k < 3; ++k)
-                    G[3 * v + k] += w * qe[v] * L[k];
-        }
-        const double rA = 1.0 / m->area[f];
-        const double *nf = m->normal + 3 * f;
-        for (int v = 0; v < NV; ++v) {
-            double *g = G + 3 * v;
-            const double gn = dot3(g, nf);
-            for (int k = 0; k < 3; ++k)
-                g[k] = (g[k] - gn * nf[k]) * rA;
-        }
-        if (!wet) /* no velocity slope on a face without velocity */
-            memset(G + 3, 0, 9 * sizeof *G);
-        /* Barth–Jespersen */
-        double alpha[NV] = {1.0, 1.0, 1.0, 1.0};
-        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
-            const int e = s->fe[j];
-            const int own = m->owner[e] == f, other = own ? m->neighbour[e] : m->owner[e];
-            const double *r = s->frame + EG * e + (own ? EG_RO : EG_RN);
-            /* towards a dry neighbour the velocity is extrapolated, not
-             * bounded: the thin tip of a front accelerates to u + 2c */
-            const int nv = (other >= 0 && H[other] <= hd) ? 1 : NV;
-            for (int v = 0; v < nv; ++v) {
-                /* alpha = min(alpha, room/d), divided only when the ratio is
-                 * below alpha <= 1 (no overflow for a denormal slope) */
-                const double d = dot3(G + 3 * v, r);
-                if (d > 0.0 && qmax[v] - q[v] < alpha[v] * d)
-                    alpha[v] = (qmax[v] - q[v]) / d;
-                else if (d < 0.0 && qmin[v] - q[v] > alpha[v] * d)
-                    alpha[v] = (qmin[v] - q[v]) / d;
+            }
+            const double wl[3] = {w * lw[0], w * lw[1], w * lw[2]};
+            for (int k = 0; k < 3; ++k) {
+                G[k] += he * wl[k];
+                G[3 + k] += ue[0] * wl[k];
+                G[6 + k] += ue[1] * wl[k];
+                G[9 + k] += ue[2] * wl[k];
             }
         }
-        for (int v = 0; v < NV; ++v)
-            for (int k = 0; k < 3; ++k)
-                G[3 * v + k] *= gmax(0.0, alpha[v]);
+        /* tangential part, per unit area (no velocity slope on a face without velocity) */
+        const double rA = 1.0 / m->area[f], *nf = m->normal + 3 * f;
+        const int nvf = wet ? NV : 1;
+        for (int v = 0; v < nvf; ++v) {
+            double *g = G + 3 * v;
+            const double gn = g[0] * nf[0] + g[1] * nf[1] + g[2] * nf[2];
+            g[0] = (g[0] - gn * nf[0]) * rA;
+            g[1] = (g[1] - gn * nf[1]) * rA;
+            g[2] = (g[2] - gn * nf[2]) * rA;
+        }
+        if (!wet)
+            for (int k = 3; k < 3 * NV; ++k)
+                G[k] = 0.0;
+        /* Barth–Jespersen: alpha = min over the edges of room/d, divided
+         * only when the ratio is below alpha <= 1 (no overflow for a
+         * denormal slope); towards a dry neighbour the velocity is
+         * extrapolated, not bounded: the thin tip of a front accelerates to
+         * u + 2c */
+        double alpha[NV] = {1.0, 1.0, 1.0, 1.0};
+        const double qv[NV] = {h0, u0[0], u0[1], u0[2]};
+        const double qmn[NV] = {hmin, umin[0], umin[1], umin[2]}, qmx[NV] = {hmax, umax[0], umax[1], umax[2]};
+        for (size_t j = j0; j < j1; ++j) {
+            const int e = s->fe[j];
+            const int isown = own[e] == f, other = isown ? nbr[e] : own[e];
+            const double *r = s->frame + EG * e + (isown ? EG_RO : EG_RN);
+            const int nv = (other >= 0 && H[other] <= hd) ? 1 : NV;
+            for (int v = 0; v < nv; ++v) {
+                const double *g = G + 3 * v;
+                const double d = g[0] * r[0] + g[1] * r[1] + g[2] * r[2];
+                if (d > 0.0 && qmx[v] - qv[v] < alpha[v] * d)
+                    alpha[v] = (qmx[v] - qv[v]) / d;
+                else if (d < 0.0 && qmn[v] - qv[v] > alpha[v] * d)
+                    alpha[v] = (qmn[v] - qv[v]) / d;
+            }
+        }
+        double *Gf = s->grad + 3 * NV * f;
+        for (int v = 0; v < NV; ++v) {
+            const double c = gmax(0.0, alpha[v]);
+            Gf[3 * v] = G[3 * v] * c;
+            Gf[3 * v + 1] = G[3 * v + 1] * c;
+            Gf[3 * v + 2] = G[3 * v + 2] * c;
+        }
     }
 }
 
