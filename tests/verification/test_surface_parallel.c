@@ -435,10 +435,11 @@ static void decomposed_runs_equal_the_serial_run(void **state)
 }
 
 /* The start-up refinement decomposed: a frictionless dam break (h = 1 m
- * behind x = 6 m, a 2 m hump of 0.3 m across, dry beyond) on a 10 deg plane
- * of 80 x 30 faces with startupLevels 2, for 2 s (the refined phase covers the first 1.31 s): the refined meshes' halos
- * are built and exchanged per processor edge, and their positivity decisions
- * are taken over all ranks. */
+ * behind s = 6 m, 1.3 m across the middle 2 m, dry beyond) on a 10 deg
+ * plane of 80 x 30 faces with startup_levels 2, for 2 s (the refined phase
+ * covers the first 1.31 s): the refined meshes' halos are built and
+ * exchanged per processor edge, and their positivity decisions are taken
+ * over all ranks. */
 static void decomposed_startup_refinement_equals_the_serial_run(void **state)
 {
     (void)state;
