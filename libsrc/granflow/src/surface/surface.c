@@ -924,14 +924,14 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
      * so that their exchanges stay paired and an edge's two copies carry one
      * flux. */
     const double tiny = 1e-13 * s->h_scale;
-    double *badf = s->lvl; /* per face: marked this pass (scratch, exchanged) */
+    double *badf = s->lvl; /* per face: marked this pass (scratch, exchanged; build_active's otherwise) */
+    int *badl = s->ring;   /* the faces marked this pass (scratch) */
     const int par = s->m.n_ghosts > 0 || s->minfn;
     for (int pass = 0;; ++pass) {
         accumulate(s);
         int bad = 0, fail = 0, fail_f = -1;
+        size_t nbad = 0;
         double fail_h = 0.0;
-        if (par)
-            memset(badf, 0, m->n_faces * sizeof *badf);
         for (size_t i = 0; i < s->n_act_owned; ++i) {
             const int f = s->act_f[i];
             const double hn = H[f] - dt / m->area[f] * s->acc_h[f];
@@ -941,7 +941,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
                         fail = 1, fail_f = f, fail_h = hn;
                     continue;
                 }
-                badf[f] = 1.0;
+                badl[nbad++] = f;
                 for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
                     const int e = s->fe[j];
                     if (!s->first[e]) {
@@ -968,6 +968,9 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         if (!bad)
             break;
         if (par) { /* processor edges of faces marked on the other side */
+            memset(badf, 0, m->n_faces * sizeof *badf); /* only in a pass that marked faces somewhere */
+            for (size_t i = 0; i < nbad; ++i)
+                badf[badl[i]] = 1.0;
             if ((st = exchange(s, badf, 1)))
                 return st;
             for (size_t i = 0; i < s->n_act_e; ++i) {
