@@ -28,10 +28,10 @@ typedef struct dg {
     unsigned char *moving;      /* M_j, nc */
     unsigned char *stopped;     /* stopped by friction in the last Euler stage, nc */
     unsigned char *moving0;     /* M_j at the start of a step, to repeat it, nc */
-    double *zg, *kg;            /* zeta, kappa at Gauss points, nc * ng */
-    double *zf;                 /* zeta at interfaces, n + 1 */
-    double *czg, *szg;          /* cos, sin of zeta at Gauss points (the bed is fixed) */
-    double *czf;                /* cos of zeta at interfaces */
+    /* the bed (fixed): cos and sin of zeta and the curvature kappa at the
+     * Gauss points (nc * ng; ghost cells flat), cos zeta at the interfaces */
+    double *czg, *szg, *kg;
+    double *czf;
     double *fh, *fqx;           /* interface fluxes, n + 1 */
 } dg;
 
@@ -76,7 +76,7 @@ static gf_status dg_init(gf_sh1d *s)
 
     const size_t n = s->n, nc = n + 2, M = (size_t)d->m, G = (size_t)d->ng;
     d->nc = nc;
-    const size_t total = 10 * nc * M + 3 * nc + 4 * nc * G + 4 * (n + 1);
+    const size_t total = 10 * nc * M + 3 * nc + 3 * nc * G + 3 * (n + 1);
     double *blk = calloc(total, sizeof *blk);
     unsigned char *flags = calloc(3 * nc, 1);
     if (!blk || !flags) {
@@ -99,9 +99,7 @@ static gf_status dg_init(gf_sh1d *s)
     d->cap = p; p += nc;
     d->k = p; p += nc;
     d->ubar = p; p += nc;
-    d->zg = p; p += nc * G;
     d->kg = p; p += nc * G;
-    d->zf = p; p += n + 1;
     d->czf = p; p += n + 1;
     d->czg = p; p += nc * G;
     d->szg = p; p += nc * G;
@@ -112,19 +110,18 @@ static gf_status dg_init(gf_sh1d *s)
     d->moving0 = flags + 2 * nc;
     s->impl = d;
 
-    for (size_t c = 1; c <= n; ++c) {
-        const double xc = gf_sh1d_cell_centre(s, c - 1);
-        for (size_t g = 0; g < G; ++g)
-            gf_sh1d_bed(s, xc + 0.5 * s->dx * d->xg[g], &d->zg[c * G + g], &d->kg[c * G + g]);
-    }
+    for (size_t c = 0; c < nc; ++c)
+        for (size_t g = 0; g < G; ++g) {
+            double zeta = 0.0; /* ghost cells: flat */
+            if (c >= 1 && c <= n)
+                gf_sh1d_bed(s, gf_sh1d_cell_centre(s, c - 1) + 0.5 * s->dx * d->xg[g], &zeta, &d->kg[c * G + g]);
+            d->czg[c * G + g] = cos(zeta);
+            d->szg[c * G + g] = sin(zeta);
+        }
     for (size_t f = 0; f <= n; ++f) {
-        double kap;
-        gf_sh1d_bed(s, s->cfg.x_min + (double)f * s->dx, &d->zf[f], &kap);
-        d->czf[f] = cos(d->zf[f]);
-    }
-    for (size_t i = 0; i < nc * G; ++i) {
-        d->czg[i] = cos(d->zg[i]);
-        d->szg[i] = sin(d->zg[i]);
+        double zeta, kap;
+        gf_sh1d_bed(s, s->cfg.x_min + (double)f * s->dx, &zeta, &kap);
+        d->czf[f] = cos(zeta);
     }
     for (size_t c = 0; c < nc; ++c)
         d->k[c] = 1.0;

@@ -11,7 +11,8 @@
  * [0..11] the frame nu, t, nu_L, nu_R; [12..14] length * edge normal (the
  * Green–Gauss weight of the owner); [15..17], [18..20] edge centre minus
  * owner / neighbour centre; [21], [22] length * nu . n_owner, length * nu .
- * n_neighbour (the normal part of the edge pressure in eq. 33) */
+ * n_neighbour (the normal part of the edge pressure in eq. 33); [23] padding
+ * (an edge's block fills three cache lines) */
 #define EG 24
 #define EG_LW 12
 #define EG_RO 15
