@@ -14,8 +14,9 @@
  *   cap:     spreading parabolic cap (h0 = 1, l0 = 2, beta = 1) on [-15, 15],
  *            t = 5: the same two errors.
  * The two dry-front problems also run with the start-up refinement
- * (startup_levels = 3; scheme names with "+s3"); its finer grids' CPU time
- * is included, their steps are not counted as cell updates.
+ * (startup_levels = 3, every scheme, names with "+s3"; and 5, RKDG P1 and
+ * P2, "+s5"); its finer grids' CPU time is included, their steps are not
+ * counted as cell updates.
  * Prints: problem, scheme, N, L1 error, CPU seconds, cell updates per second
  * (cells x steps / CPU s; DG counts a three-stage step once), front error in
  * cells (nan without a dry front).  CSV on stdout.
@@ -87,11 +88,15 @@ static void configure(gf_sh1d_config *c, int problem, int variant, size_t n)
         gf_friction_set(&c->friction, "mu", tan(GF_PI / 6));
         gf_friction_set(&c->friction, "u0", 0.0);
     }
-    if (variant % 6 < 3)
+    /* variants 0-5: the six schemes; 6-11: the same with startup_levels 3;
+     * 12, 13: RKDG P1, P2 with startup_levels 5 (the dry-front problems) */
+    if (variant >= 12)
+        c->degree = variant - 11;
+    else if (variant % 6 < 3)
         c->scheme = variant % 6 + 1;
     else
         c->degree = variant % 6 - 3;
-    c->startup_levels = variant >= 6 ? 3 : 0; /* the dry-front problems also with start-up refinement */
+    c->startup_levels = variant >= 12 ? 5 : variant >= 6 ? 3 : 0;
 }
 
 static gf_sh1d *run(int problem, int variant, size_t n, double *cpu)
@@ -99,7 +104,7 @@ static gf_sh1d *run(int problem, int variant, size_t n, double *cpu)
     gf_sh1d_config c;
     configure(&c, problem, variant, n);
     gf_sh1d *s;
-    if (gf_sh1d_alloc(variant % 6 < 3 ? gf_sh1d_kinetic : gf_sh1d_rkdg, &c, &s)) {
+    if (gf_sh1d_alloc(variant < 12 && variant % 6 < 3 ? gf_sh1d_kinetic : gf_sh1d_rkdg, &c, &s)) {
         fprintf(stderr, "bench1d: %s\n", gf_error_detail());
         exit(1);
     }
@@ -160,9 +165,10 @@ static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *
 
 int main(void)
 {
-    static const char *names[12] = {"kinetic1",    "kinetic2",    "kinetic3",    "rkdgP0",
+    static const char *names[14] = {"kinetic1",    "kinetic2",    "kinetic3",    "rkdgP0",
                                     "rkdgP1",      "rkdgP2",      "kinetic1+s3", "kinetic2+s3",
-                                    "kinetic3+s3", "rkdgP0+s3",   "rkdgP1+s3",   "rkdgP2+s3"};
+                                    "kinetic3+s3", "rkdgP0+s3",   "rkdgP1+s3",   "rkdgP2+s3",
+                                    "rkdgP1+s5",   "rkdgP2+s5"};
     gf_riemann ex, ritter;
     gf_riemann_solve(&ex, 0.4, 1.0, 0.0, 0.5, 0.0, 5.0);
     gf_riemann_solve(&ritter, 1.0, 1.0, 0.0, 0.0, 0.0, 6.0);
@@ -171,7 +177,7 @@ int main(void)
     gf_sh1d *ref = run(SMOOTH, 5, 2048, &cpu);
     printf("problem,scheme,N,L1_error,cpu_s,cell_updates_per_s,front_error_cells\n");
     for (int problem = 0; problem < NPROBLEMS; ++problem)
-        for (int v = 0; v < 12; ++v)
+        for (int v = 0; v < 14; ++v)
             for (size_t n = 50; n <= 1600; n *= 2) {
                 if (v >= 6 && problem != RITTER && problem != CAP)
                     continue;

@@ -662,6 +662,39 @@ static void dry_fronts_with_startup_refinement(void **state)
     }
 }
 
+/* A deeper start-up refinement (startup_levels = 4: the first phase on grids
+ * 16, 8, 4 and 2 times finer) on the two dam breaks.  P2 stays below P1 at
+ * equal N.  On Ritter P1's L1(h) stalls near the floor of its S-shaped
+ * error at the dam's sonic point (u = c at x = 6 for all t; the TVB
+ * constant M = 1 leaves it), so P2 on N cells is below P1 on 2N cells;
+ * on the incline the sonic point moves with the flow, P1 has no such floor
+ * and P1 on 2N cells is the more accurate (the CPU times are in the bench,
+ * tests/bench/run-bench1d).  Measured (N = 800; P1 N = 1600):
+ * Ritter  P1 -0.14 cells 1.72e-3, P1 N=1600 -0.06 1.20e-3, P2 -0.57 8.80e-4;
+ * incline P1 -0.21 1.36e-3, P1 N=1600 -0.09 7.30e-4, P2 +2.64 8.90e-4. */
+static void deep_startup_refinement_p2_past_p1(void **state)
+{
+    (void)state;
+    static const char *const pname[] = {"Ritter", "Coulomb incline"};
+    for (int p = RITTER; p <= INCLINE; ++p) {
+        double e[3], l1[3], tr;
+        const gf_sh1d_type *t = gf_sh1d_rkdg;
+        front_startup_levels = 4;
+        e[0] = front_error(p, t, 1, 800, &tr, &l1[0]);
+        e[1] = front_error(p, t, 1, 1600, &tr, &l1[1]);
+        e[2] = front_error(p, t, 2, 800, &tr, &l1[2]);
+        front_startup_levels = 0;
+        printf("  %s, t = 5, startup_levels = 4: front in cells, L1(h): P1 N=800 %+.2f %.2e; "
+               "P1 N=1600 %+.2f %.2e; P2 N=800 %+.2f %.2e\n",
+               pname[p], e[0], l1[0], e[1], l1[1], e[2], l1[2]);
+        for (int k = 0; k < 3; ++k)
+            assert_true(fabs(e[k]) <= 3.0);
+        assert_true(l1[2] <= 0.75 * l1[0]); /* P2 below P1 at equal N (0.51, 0.65) */
+        if (p == RITTER)                    /* and below P1 on twice the cells (0.73) */
+            assert_true(l1[2] <= 0.85 * l1[1]);
+    }
+}
+
 /* Ritter's dam break started from its exact solution at t0 = 0.5 (front
  * resolved: 9.5 / 19 / 38 cells out at N = 200 / 400 / 800), run to t = 5
  * (190 / 381 cells of travel at N = 400 / 800): what the schemes do with a
@@ -880,6 +913,7 @@ int main(void)
         cmocka_unit_test(dry_fronts_against_exact),
         cmocka_unit_test(resolved_ritter_front_every_scheme),
         cmocka_unit_test(dry_fronts_with_startup_refinement),
+        cmocka_unit_test(deep_startup_refinement_p2_past_p1),
         cmocka_unit_test(rkdg_limiters_never_abort),
         cmocka_unit_test(p2_beats_p1_with_the_limiters_on),
         cmocka_unit_test(kinetic_rest_at_every_courant_number),
