@@ -7,18 +7,27 @@
 #include <string.h>
 
 #define NV 4 /* reconstructed variables: h, u_x, u_y, u_z */
-/* per-edge geometry block (gf_surface.frame), built once by build_frames:
- * [0..11] the frame nu, t, nu_L, nu_R; [12..14] length * edge normal (the
- * Green–Gauss weight of the owner); [15..17], [18..20] edge centre minus
- * owner / neighbour centre; [21], [22] length * nu . n_owner, length * nu .
- * n_neighbour (the normal part of the edge pressure in eq. 33); [23] padding
- * (an edge's block fills three cache lines) */
-#define EG 24
-#define EG_LW 12
-#define EG_RO 15
-#define EG_RN 18
-#define EG_PO 21
-#define EG_PN 22
+/* Per-edge geometry, built once by build_frames, in two blocks so that each
+ * pass reads only what it needs (a face's edges are not adjacent in memory;
+ * on meshes larger than the cache the passes are bound by these reads):
+ *  - gf_surface.frame, EF doubles per edge (edge fluxes, step bound): the
+ *    frame nu, t, nu_L, nu_R;
+ *  - gf_surface.geo, EG doubles per edge (gradients, limiter, edge fluxes):
+ *    [0..2] length * edge normal (the Green–Gauss weight of the owner),
+ *    [3..5], [6..8] edge centre minus owner / neighbour centre, [9], [10]
+ *    length * nu . n_owner, length * nu . n_neighbour (the normal part of
+ *    the edge pressure in eq. 33). */
+#define EF 12
+#define EG 11
+#define EG_LW 0
+#define EG_RO 3
+#define EG_RN 6
+#define EG_PO 9
+#define EG_PN 10
+/* Per-edge sums for accumulate (gf_surface.eacc), written by edge_flux: the
+ * products it adds, in the order it adds them: L fh, fp L nu.n_o, fpn L
+ * nu.n_n, L fm[3] (owner), L fmn[3] (neighbour) */
+#define EA 9
 
 struct gf_surface {
     gf_surface_mesh m;
@@ -34,9 +43,9 @@ struct gf_surface {
     /* face -> edges (all nt faces; a ghost has its one processor edge) */
     size_t *fe_start;
     int *fe;
-    /* per-edge geometry (EG doubles per edge): frame nu, t, nu_L (owner
-     * plane), nu_R (neighbour plane), and the kernels' precomputed vectors */
-    double *frame;
+    /* per-edge geometry: frame nu, t, nu_L (owner plane), nu_R (neighbour
+     * plane) (EF per edge), and the kernels' precomputed vectors (EG) */
+    double *frame, *geo;
     /* state and stage buffers (nt, 3 nt) */
     double *h, *mom, *h1, *m1, *h2, *m2;
     double *a;    /* normal acceleration p_b/(rho h) per face (nt) */
@@ -45,11 +54,11 @@ struct gf_surface {
     double *grad; /* 3 NV per face (nt) */
     /* accumulators per owned face */
     double *acc_h, *acc_m, *acc_pn;
-    /* per-edge fluxes */
-    /* per-edge fluxes per unit length: mass fh; momentum fm, fmn and the
-     * pressure part along nu fp, fpn as the owner and the neighbour feel
-     * them (they differ on static edges only) */
-    double *fh, *fm, *fmn, *fp, *fpn;
+    /* per-edge fluxes: the mass flux per unit length fh (boundary volumes),
+     * and the products accumulate sums (EA per edge): of fh, of the momentum
+     * fluxes fm, fmn and of the pressure part along nu fp, fpn as the owner
+     * and the neighbour feel them (they differ on static edges only) */
+    double *fh, *eacc;
     double *spd; /* per edge: HLL speeds s_L, s_R of the step bound */
     double *ahyd;     /* hydrostatic normal acceleration max(0, -g.n) per face (nt) */
     unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt) */
@@ -115,9 +124,9 @@ void gf_surface_free(gf_surface *s)
     if (!s)
         return;
     startup_free(s);
-    void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->h,        s->mom,  s->h1,     s->m1,
+    void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->geo,      s->h,    s->mom,    s->h1,     s->m1,
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
-                    s->acc_pn,   s->fh,     s->fm,     s->fp,  s->fmn, s->fpn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
+                    s->acc_pn,   s->fh,     s->eacc, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
@@ -188,7 +197,7 @@ static gf_status build_frames(gf_surface *s)
 {
     const gf_surface_mesh *m = &s->m;
     for (size_t e = 0; e < m->n_edges; ++e) {
-        double *fr = s->frame + EG * e, ne[3];
+        double *fr = s->frame + EF * e, *ge = s->geo + EG * e, ne[3];
         const double *no = m->normal + 3 * m->owner[e];
         const double *nn = m->neighbour[e] >= 0 ? m->normal + 3 * m->neighbour[e] : no;
         for (int k = 0; k < 3; ++k)
@@ -210,13 +219,12 @@ static gf_status build_frames(gf_surface *s)
         const double L = m->length[e], *xe = m->edge_centre + 3 * e, *xo = m->centre + 3 * m->owner[e];
         const double *xn = m->neighbour[e] >= 0 ? m->centre + 3 * m->neighbour[e] : xo;
         for (int k = 0; k < 3; ++k) {
-            fr[EG_LW + k] = L * m->edge_normal[3 * e + k];
-            fr[EG_RO + k] = xe[k] - xo[k];
-            fr[EG_RN + k] = xe[k] - xn[k];
+            ge[EG_LW + k] = L * m->edge_normal[3 * e + k];
+            ge[EG_RO + k] = xe[k] - xo[k];
+            ge[EG_RN + k] = xe[k] - xn[k];
         }
-        fr[EG_PO] = L * dot3(nu, no);
-        fr[EG_PN] = L * dot3(nu, nn);
-        fr[EG - 1] = 0.0;
+        ge[EG_PO] = L * dot3(nu, no);
+        ge[EG_PN] = L * dot3(nu, nn);
     }
     return GF_SUCCESS;
 }
@@ -241,7 +249,8 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     const size_t nt = s->nt = mesh->n_faces + mesh->n_ghosts, ne = mesh->n_edges, nf = mesh->n_faces;
     s->fe_start = calloc(nt + 1, sizeof *s->fe_start);
     s->fe = malloc((2 * ne + 1) * sizeof *s->fe);
-    s->frame = malloc((EG * ne + 1) * sizeof *s->frame);
+    s->frame = malloc((EF * ne + 1) * sizeof *s->frame);
+    s->geo = malloc((EG * ne + 1) * sizeof *s->geo);
     double **d3[] = {&s->mom, &s->m1, &s->m2, &s->u};
     for (int i = 0; i < 4; ++i)
         *d3[i] = calloc(3 * nt, sizeof(double));
@@ -254,10 +263,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->acc_m = calloc(3 * nf, sizeof *s->acc_m);
     s->acc_pn = calloc(nf, sizeof *s->acc_pn);
     s->fh = calloc(ne + 1, sizeof *s->fh);
-    s->fm = calloc(3 * ne + 1, sizeof *s->fm);
-    s->fp = calloc(ne + 1, sizeof *s->fp);
-    s->fmn = calloc(3 * ne + 1, sizeof *s->fmn);
-    s->fpn = calloc(ne + 1, sizeof *s->fpn);
+    s->eacc = calloc(EA * ne + 1, sizeof *s->eacc);
     s->spd = calloc(2 * ne + 1, sizeof *s->spd);
     s->ahyd = calloc(nt, sizeof *s->ahyd);
     s->stat = calloc(nt, 1);
@@ -276,8 +282,8 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->prev_f = malloc(nt * sizeof *s->prev_f);
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
-    if (!s->fe_start || !s->fe || !s->frame || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
-        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->fm || !s->fp || !s->fmn || !s->fpn || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
+    if (!s->fe_start || !s->fe || !s->frame || !s->geo || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
+        !s->a || !s->pb || !s->grad || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->eacc || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
@@ -579,7 +585,7 @@ static void gradients(gf_surface *s, const double *H)
         for (size_t j = j0; j < j1; ++j) {
             const int e = s->fe[j];
             const int other = own[e] == f ? nbr[e] : own[e];
-            const double *lw = s->frame + EG * e + EG_LW, w = own[e] == f ? 1.0 : -1.0;
+            const double *lw = s->geo + EG * e + EG_LW, w = own[e] == f ? 1.0 : -1.0;
             double he = h0, ue[3] = {u0[0], u0[1], u0[2]};
             if (other >= 0) {
                 const double hn = H[other];
@@ -627,7 +633,7 @@ static void gradients(gf_surface *s, const double *H)
         for (size_t j = j0; j < j1; ++j) {
             const int e = s->fe[j];
             const int isown = own[e] == f, other = isown ? nbr[e] : own[e];
-            const double *r = s->frame + EG * e + (isown ? EG_RO : EG_RN);
+            const double *r = s->geo + EG * e + (isown ? EG_RO : EG_RN);
             const int nv = (other >= 0 && H[other] <= hd) ? 1 : NV;
             for (int v = 0; v < nv; ++v) {
                 const double *g = G + 3 * v;
@@ -745,10 +751,12 @@ static inline double hydrostatic_pressure(const gf_surface *s, const double *H, 
 static void edge_flux(gf_surface *s, const double *H, int e, int order2)
 {
     const gf_surface_mesh *m = &s->m;
-    const double *fr = s->frame + EG * e, *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
+    const double *fr = s->frame + EF * e, *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
+    const double *ge = s->geo + EG * e, L = m->length[e];
     const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
     const unsigned st = s->stamp;
-    double *fm = s->fm + 3 * e;
+    /* the sums of accumulate: L fh, fp PO, fpn PN, L fm, L fmn */
+    double *ea = s->eacc + EA * e, fm[3];
     double hl, ul[3], F[3], fpress, un_b = 0.0, ut_b = 0.0;
     if (kind == GF_EDGE_INTERNAL) {
         if (s->sedge[e]) {
@@ -785,25 +793,25 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
             const double qn = s->stat[n] ? hydrostatic_pressure(s, H, n, o) : pn;
             const double fh = H[up] * vm;
             s->fh[e] = fh;
-            s->fp[e] = po;
-            s->fpn[e] = pn;
-            double *fmn = s->fmn + 3 * e;
+            ea[0] = L * fh;
+            ea[1] = po * ge[EG_PO];
+            ea[2] = pn * ge[EG_PN];
             for (int k = 0; k < 3; ++k) {
                 const double adv = fh * (unu * nu[k] + ut * t[k]);
-                fm[k] = adv + qo * nu[k];
-                fmn[k] = adv + qn * nu[k];
+                ea[3 + k] = L * (adv + qo * nu[k]);
+                ea[6 + k] = L * (adv + qn * nu[k]);
             }
             return;
         }
         double hr, ur[3];
         const int rec = order2 && !s->first[e];
         const int dry_o = H[o] <= s->c.h_dry, dry_n = H[n] <= s->c.h_dry;
-        side_state(s, H, o, fr + EG_RO, rec ? (dry_n ? 2 : 1) : 0, &hl, ul);
-        side_state(s, H, n, fr + EG_RN,
+        side_state(s, H, o, ge + EG_RO, rec ? (dry_n ? 2 : 1) : 0, &hl, ul);
+        side_state(s, H, n, ge + EG_RN,
                    rec && ((size_t)n >= m->n_faces || s->mark_f[n] == st) ? (dry_o ? 2 : 1) : 0, &hr, ur);
         hll(hl, dot3(ul, nul), dot3(ul, t), s->a[o], hr, dot3(ur, nur), dot3(ur, t), s->a[n], F, &fpress);
     } else {
-        side_state(s, H, o, fr + EG_RO, order2 && !s->first[e], &hl, ul);
+        side_state(s, H, o, ge + EG_RO, order2 && !s->first[e], &hl, ul);
         const double un = dot3(ul, nul), ut = dot3(ul, t), p = 0.5 * s->a[o] * hl * hl;
         un_b = un, ut_b = ut;
         if (kind == GF_EDGE_WALL) { /* mirror state: no mass, pressure and reflection */
@@ -824,19 +832,21 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
         }
     }
     s->fh[e] = F[0];
-    s->fp[e] = fpress;
-    s->fpn[e] = fpress;
+    ea[0] = L * F[0];
+    ea[1] = fpress * ge[EG_PO];
+    ea[2] = fpress * ge[EG_PN];
     if (kind != GF_EDGE_INTERNAL && s->stat[o]) {
         /* a wall (or an outflow edge nothing leaves) of a face in the
          * hydrostatic mode: the hydrostatic ghost (delta = 0), no force
          * along the surface; fpress still enters p_b */
         for (int k = 0; k < 3; ++k)
-            fm[k] = F[0] * (un_b * nu[k] + ut_b * t[k]);
+            ea[3 + k] = L * (F[0] * (un_b * nu[k] + ut_b * t[k]));
         return;
     }
-    double *fmn = s->fmn + 3 * e;
-    for (int k = 0; k < 3; ++k)
-        fmn[k] = fm[k] = F[1] * nu[k] + F[2] * t[k];
+    for (int k = 0; k < 3; ++k) {
+        fm[k] = F[1] * nu[k] + F[2] * t[k];
+        ea[3 + k] = ea[6 + k] = L * fm[k];
+    }
 }
 
 /* The edge fluxes summed per owned active face, over its edges in the
@@ -853,19 +863,17 @@ static void accumulate(gf_surface *s)
         double ah = 0.0, ap = 0.0, am[3] = {0.0, 0.0, 0.0};
         for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
             const int e = s->fe[j];
-            const double L = m->length[e], *fr = s->frame + EG * e;
+            const double *ea = s->eacc + EA * e;
             if (m->owner[e] == f) {
-                const double *fm = s->fm + 3 * e;
-                ah += L * s->fh[e];
-                ap += s->fp[e] * fr[EG_PO];
+                ah += ea[0];
+                ap += ea[1];
                 for (int k = 0; k < 3; ++k)
-                    am[k] += L * fm[k];
+                    am[k] += ea[3 + k];
             } else {
-                const double *fm = s->fmn + 3 * e;
-                ah -= L * s->fh[e];
-                ap -= s->fpn[e] * fr[EG_PN];
+                ah -= ea[0];
+                ap -= ea[2];
                 for (int k = 0; k < 3; ++k)
-                    am[k] -= L * fm[k];
+                    am[k] -= ea[6 + k];
             }
         }
         s->acc_h[f] = ah, s->acc_pn[f] = ap;
@@ -1447,7 +1455,7 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i];
         const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
-        const double *fr = s->frame + EG * e;
+        const double *fr = s->frame + EF * e;
         double uo[3];
         velocity(s, s->h, s->mom, o, uo);
         const double hl = s->h[o], ul = dot3(uo, fr + 6), cl = sqrt(s->a[o] * hl);
