@@ -594,14 +594,32 @@ static gf_status build_active(gf_surface *s)
     return GF_SUCCESS;
 }
 
+/* The four reconstructed variables (h, u_x, u_y, u_z) of a face as the four
+ * lanes of one vector (GCC vector extensions: each lane does the scalar
+ * operations of the per-variable loops it replaces, in the same order, so
+ * the results are the same bit for bit; on SSE2 a lane pair per
+ * instruction, on AVX one instruction). */
+/* the helpers are static and inlined: the ABI of passing 32-byte vectors
+ * without AVX, which GCC warns about, does not arise */
+#pragma GCC diagnostic ignored "-Wpsabi"
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4i __attribute__((vector_size(32)));
+static inline v4d vsplat(double x) { return (v4d){x, x, x, x}; }
+static inline v4d vsel(v4i m, v4d a, v4d b) { return (v4d)(((v4i)a & m) | ((v4i)b & ~m)); }
+static inline v4d vmin(v4d a, v4d b) { return vsel(a < b, a, b); } /* gmin per lane */
+static inline v4d vmax(v4d a, v4d b) { return vsel(a > b, a, b); } /* gmax per lane */
+static inline int vany(v4i m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+
 /* Green–Gauss gradients of h and u over the face's edges (mean of the two
  * sides; velocity only from wet neighbours), projected onto the tangent
- * plane, Barth–Jespersen limited at the edge midpoints. */
+ * plane, Barth–Jespersen limited at the edge midpoints; then the
+ * reconstructed h and u at the face's edges (gf_surface.es). */
 static void gradients(gf_surface *s, const double *H)
 {
     const gf_surface_mesh *m = &s->m;
     const double hd = s->c.h_dry;
     const int *own = m->owner, *nbr = m->neighbour;
+    const v4i all = {-1, -1, -1, -1}, lane0 = {-1, 0, 0, 0};
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
         if (i + PF_DIST / 2 < s->n_act_owned) {
@@ -613,98 +631,79 @@ static void gradients(gf_surface *s, const double *H)
         }
         const double h0 = H[f], *u0 = s->u + 3 * f;
         const int wet = h0 > hd;
-        /* G[0..2] grad h, G[3 + 3 c + k] d u_c / d x_k */
-        double G[3 * NV] = {0.0};
-        double hmin = h0, hmax = h0;
-        double umin[3] = {u0[0], u0[1], u0[2]}, umax[3] = {u0[0], u0[1], u0[2]};
+        const v4d q0 = {h0, u0[0], u0[1], u0[2]};
+        /* Gx, Gy, Gz: the x, y, z components of the gradients of the four
+         * variables (lane v: grad h, grad u_x, grad u_y, grad u_z) */
+        v4d Gx = vsplat(0.0), Gy = Gx, Gz = Gx, qmn = q0, qmx = q0;
         const size_t j0 = s->fe_start[f], j1 = s->fe_start[f + 1];
         for (size_t j = j0; j < j1; ++j) {
             const int e = s->fe[j];
             const int other = own[e] == f ? nbr[e] : own[e];
             const double *lw = s->geo + EG * e + EG_LW, w = own[e] == f ? 1.0 : -1.0;
-            double he = h0, ue[3] = {u0[0], u0[1], u0[2]};
+            v4d qe = q0;
             if (other >= 0) {
-                const double hn = H[other];
-                he = 0.5 * (h0 + hn);
-                hmin = gmin(hmin, hn);
-                hmax = gmax(hmax, hn);
-                if (wet && hn > hd) {
-                    const double *un = s->u + 3 * other;
-                    for (int c = 0; c < 3; ++c) {
-                        ue[c] = 0.5 * (u0[c] + un[c]);
-                        umin[c] = gmin(umin[c], un[c]);
-                        umax[c] = gmax(umax[c], un[c]);
-                    }
-                }
+                const double hn = H[other], *un = s->u + 3 * other;
+                const v4d qn = {hn, un[0], un[1], un[2]};
+                const v4i use = wet && hn > hd ? all : lane0;
+                qe = vsel(use, vsplat(0.5) * (q0 + qn), q0);
+                qmn = vsel(use, vmin(qmn, qn), qmn);
+                qmx = vsel(use, vmax(qmx, qn), qmx);
             }
-            const double wl[3] = {w * lw[0], w * lw[1], w * lw[2]};
-            for (int k = 0; k < 3; ++k) {
-                G[k] += he * wl[k];
-                G[3 + k] += ue[0] * wl[k];
-                G[6 + k] += ue[1] * wl[k];
-                G[9 + k] += ue[2] * wl[k];
-            }
+            Gx += qe * vsplat(w * lw[0]);
+            Gy += qe * vsplat(w * lw[1]);
+            Gz += qe * vsplat(w * lw[2]);
         }
         /* tangential part, per unit area (no velocity slope on a face without velocity) */
         const double rA = 1.0 / m->area[f], *nf = m->normal + 3 * f;
-        const int nvf = wet ? NV : 1;
-        for (int v = 0; v < nvf; ++v) {
-            double *g = G + 3 * v;
-            const double gn = g[0] * nf[0] + g[1] * nf[1] + g[2] * nf[2];
-            g[0] = (g[0] - gn * nf[0]) * rA;
-            g[1] = (g[1] - gn * nf[1]) * rA;
-            g[2] = (g[2] - gn * nf[2]) * rA;
+        {
+            const v4d gn = Gx * vsplat(nf[0]) + Gy * vsplat(nf[1]) + Gz * vsplat(nf[2]);
+            const v4d ra = vsplat(rA);
+            Gx = (Gx - gn * vsplat(nf[0])) * ra;
+            Gy = (Gy - gn * vsplat(nf[1])) * ra;
+            Gz = (Gz - gn * vsplat(nf[2])) * ra;
         }
-        if (!wet)
-            for (int k = 3; k < 3 * NV; ++k)
-                G[k] = 0.0;
+        if (!wet) {
+            const v4d z = vsplat(0.0);
+            Gx = vsel(lane0, Gx, z), Gy = vsel(lane0, Gy, z), Gz = vsel(lane0, Gz, z);
+        }
         /* Barth–Jespersen: alpha = min over the edges of room/d, divided
          * only when the ratio is below alpha <= 1 (no overflow for a
          * denormal slope); towards a dry neighbour the velocity is
          * extrapolated, not bounded: the thin tip of a front accelerates to
          * u + 2c */
-        double alpha[NV] = {1.0, 1.0, 1.0, 1.0};
-        const double qv[NV] = {h0, u0[0], u0[1], u0[2]};
-        const double qmn[NV] = {hmin, umin[0], umin[1], umin[2]}, qmx[NV] = {hmax, umax[0], umax[1], umax[2]};
+        v4d alpha = vsplat(1.0);
+        const v4d rp = qmx - q0, rm = qmn - q0;
         for (size_t j = j0; j < j1; ++j) {
             const int e = s->fe[j];
             const int isown = own[e] == f, other = isown ? nbr[e] : own[e];
             const double *r = s->geo + EG * e + (isown ? EG_RO : EG_RN);
-            const int nv = (other >= 0 && H[other] <= hd) ? 1 : NV;
-            for (int v = 0; v < nv; ++v) {
-                const double *g = G + 3 * v;
-                const double d = g[0] * r[0] + g[1] * r[1] + g[2] * r[2];
-                /* the same tests as "d > 0 && room_max < alpha d, else d <
-                 * 0 && room_min > alpha d", evaluated without branching on
-                 * the sign of d (unpredictable: half the edges of a face);
-                 * the division only where alpha changes (rare) */
-                const double rp = qmx[v] - qv[v], rm = qmn[v] - qv[v], ad = alpha[v] * d;
-                const int hit = ((d > 0.0) & (rp < ad)) | ((d < 0.0) & (rm > ad));
-                if (hit)
-                    alpha[v] = (d > 0.0 ? rp : rm) / d;
-            }
+            const v4i lanes = (other >= 0 && H[other] <= hd) ? lane0 : all;
+            const v4d d = Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2]);
+            const v4d ad = alpha * d, zero = vsplat(0.0);
+            /* d > 0 && room_max < alpha d, or d < 0 && room_min > alpha d */
+            const v4i pos = d > zero;
+            const v4i hit = ((pos & (rp < ad)) | ((d < zero) & (rm > ad))) & lanes;
+            if (vany(hit))
+                alpha = vsel(hit, vsel(pos, rp, rm) / vsel(hit, d, vsplat(1.0)), alpha);
         }
+        const v4d c = vmax(vsplat(0.0), alpha);
+        Gx *= c, Gy *= c, Gz *= c;
         double *Gf = s->grad + 3 * NV * f;
         for (int v = 0; v < NV; ++v) {
-            const double c = gmax(0.0, alpha[v]);
-            Gf[3 * v] = G[3 * v] * c;
-            Gf[3 * v + 1] = G[3 * v + 1] * c;
-            Gf[3 * v + 2] = G[3 * v + 2] * c;
+            Gf[3 * v] = Gx[v];
+            Gf[3 * v + 1] = Gy[v];
+            Gf[3 * v + 2] = Gz[v];
         }
-        /* the reconstructed states at the face's edges (side_state, rec 1) */
+        /* the reconstructed states at the face's edges (side_state, rec 1):
+         * h (not below 0: round-off of the limiter), and u where wet */
+        const v4i rec = wet ? all : lane0;
         for (size_t j = j0; j < j1; ++j) {
             const int e = s->fe[j], isown = own[e] == f;
             const double *r = s->geo + EG * e + (isown ? EG_RO : EG_RN);
             double *q = s->es + 8 * e + (isown ? 0 : 4);
-            double he = h0;
-            he += dot3(Gf, r);
-            q[0] = he < 0.0 ? 0.0 : he;
-            for (int k = 0; k < 3; ++k) {
-                double uk = u0[k];
-                if (wet)
-                    uk += dot3(Gf + 3 * (k + 1), r);
-                q[1 + k] = uk;
-            }
+            const v4d qr = vsel(rec, q0 + (Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2])), q0);
+            q[0] = qr[0] < 0.0 ? 0.0 : qr[0];
+            q[1] = qr[1], q[2] = qr[2], q[3] = qr[3];
         }
     }
 }
