@@ -11,9 +11,14 @@
  *   ritter:  dam break on a dry flat bed (h 1 | 0 at x = 6 on [0, 20], beta = 1,
  *            wall at x = 0), t = 5: L1 error of h against the exact solution
  *            and the front error (the h = 1e-3 level of the cell means) in cells;
+ *   incline: the same dam on a 35 deg slope with Coulomb friction tan 30 deg
+ *            (mu constant, u0 = 0; transmissive at x = 0): u > 0 everywhere,
+ *            so the exact solution is Ritter's with beta = cos 35 deg in the
+ *            frame accelerating at sin 35 - tan 30 cos 35; t = 5: the same
+ *            two errors;
  *   cap:     spreading parabolic cap (h0 = 1, l0 = 2, beta = 1) on [-15, 15],
  *            t = 5: the same two errors.
- * The two dry-front problems also run with the start-up refinement
+ * The three dry-front problems also run with the start-up refinement
  * (startup_levels = 3, every scheme, names with "+s3"; and 5, RKDG P1 and
  * P2, "+s5"); its finer grids' CPU time is included, their steps are not
  * counted as cell updates.
@@ -44,8 +49,10 @@ static void smooth_init(double x, void *c, double *h, double *u)
     *u = 1 + 0.1 * cos(2 * GF_PI * x);
 }
 
-enum { RIEMANN, SMOOTH, SMOOTHLIM, RITTER, CAP, NPROBLEMS };
-static const char *const problem_names[NPROBLEMS] = {"riemann", "smooth", "smoothlim", "ritter", "cap"};
+enum { RIEMANN, SMOOTH, SMOOTHLIM, RITTER, INCLINE, CAP, NPROBLEMS };
+static const char *const problem_names[NPROBLEMS] = {"riemann", "smooth", "smoothlim", "ritter", "incline", "cap"};
+static const double INCLINE_ZETA = 35 * GF_PI / 180, INCLINE_DELTA = 30 * GF_PI / 180;
+#define DRY_FRONT(p) ((p) == RITTER || (p) == INCLINE || (p) == CAP)
 static gf_spreading_cap cap;
 
 static void dam_init(double x, void *c, double *h, double *u)
@@ -68,6 +75,13 @@ static void configure(gf_sh1d_config *c, int problem, int variant, size_t n)
         c->x_min = 0;
         c->x_max = 20;
         c->bc_left = GF_BC_WALL;
+    } else if (problem == INCLINE) {
+        c->x_min = 0;
+        c->x_max = 20;
+        c->zeta = INCLINE_ZETA;
+        gf_friction_init(&c->friction, "coulomb");
+        gf_friction_set(&c->friction, "mu", tan(INCLINE_DELTA));
+        gf_friction_set(&c->friction, "u0", 0.0);
     } else if (problem == CAP) {
         c->x_min = -15;
         c->x_max = 15;
@@ -109,7 +123,7 @@ static gf_sh1d *run(int problem, int variant, size_t n, double *cpu)
         exit(1);
     }
     static const gf_sh1d_initial_fn init[NPROBLEMS] = {rp_init, smooth_init, smooth_init, dam_init,
-                                                        cap_init};
+                                                        dam_init, cap_init};
     gf_sh1d_set_initial(s, init[problem], NULL);
     const clock_t t0 = clock();
     if (gf_sh1d_advance_to(s, problem == SMOOTH || problem == SMOOTHLIM ? 0.1 : 5.0)) {
@@ -131,8 +145,12 @@ static double front_of(const gf_sh1d *s, const double *h)
 
 /* L1 error of the cell means against the exact cell means (16 samples) and the
  * front error in cells, for the dry-front problems */
-static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *ritter, double *front)
+static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *ritter,
+                               const gf_riemann *incline, double *front)
 {
+    /* the incline: Ritter with beta = cos zeta in the frame accelerating at a */
+    const double a = problem == INCLINE ? sin(INCLINE_ZETA) - tan(INCLINE_DELTA) * cos(INCLINE_ZETA) : 0.0;
+    const double beta = problem == INCLINE ? cos(INCLINE_ZETA) : 1.0;
     const size_t n = gf_sh1d_n_cells(s);
     const double dx = gf_sh1d_dx(s), t = 5.0;
     double *h = malloc(2 * n * sizeof *h), e = 0.0;
@@ -145,7 +163,7 @@ static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *
             if (problem == CAP)
                 gf_spreading_cap_sample(&cap, x, t, &he, &ue);
             else
-                gf_riemann_sample(ritter, x, t, &he, &ue);
+                gf_riemann_sample(problem == INCLINE ? incline : ritter, x - 0.5 * a * t * t, t, &he, &ue);
             mean += he / 16.0;
         }
         e += fabs(h[i] - mean) * dx;
@@ -156,7 +174,8 @@ static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *
         gf_spreading_cap_stretch(&cap, t, &lam, &dlam);
         xe = lam * cap.l0 * sqrt(1.0 - 1e-3 * lam / cap.h0);
     } else {
-        xe = 6.0 + (2.0 - 3.0 * sqrt(1e-3)) * t; /* Ritter's h = 1e-3 level, beta = 1 */
+        /* Ritter's h = 1e-3 level */
+        xe = 6.0 + 0.5 * a * t * t + (2.0 * sqrt(beta) - 3.0 * sqrt(beta * 1e-3)) * t;
     }
     *front = (front_of(s, h) - xe) / dx;
     free(h);
@@ -169,9 +188,10 @@ int main(void)
                                     "rkdgP1",      "rkdgP2",      "kinetic1+s3", "kinetic2+s3",
                                     "kinetic3+s3", "rkdgP0+s3",   "rkdgP1+s3",   "rkdgP2+s3",
                                     "rkdgP1+s5",   "rkdgP2+s5"};
-    gf_riemann ex, ritter;
+    gf_riemann ex, ritter, incline;
     gf_riemann_solve(&ex, 0.4, 1.0, 0.0, 0.5, 0.0, 5.0);
     gf_riemann_solve(&ritter, 1.0, 1.0, 0.0, 0.0, 0.0, 6.0);
+    gf_riemann_solve(&incline, cos(INCLINE_ZETA), 1.0, 0.0, 0.0, 0.0, 6.0);
     gf_spreading_cap_init(&cap, 1.0, 1.0, 2.0, 0.0);
     double cpu;
     gf_sh1d *ref = run(SMOOTH, 5, 2048, &cpu);
@@ -179,7 +199,7 @@ int main(void)
     for (int problem = 0; problem < NPROBLEMS; ++problem)
         for (int v = 0; v < 14; ++v)
             for (size_t n = 50; n <= 1600; n *= 2) {
-                if (v >= 6 && problem != RITTER && problem != CAP)
+                if (v >= 6 && !DRY_FRONT(problem))
                     continue;
                 /* repeat short runs so that the CPU time is measurable */
                 double total = 0;
@@ -199,7 +219,7 @@ int main(void)
                 else if (problem == SMOOTH || problem == SMOOTHLIM)
                     e = gf_sh1d_l1_difference(s, ref);
                 else
-                    e = dry_front_errors(s, problem, &ritter, &front);
+                    e = dry_front_errors(s, problem, &ritter, &incline, &front);
                 printf("%s,%s,%zu,%.6e,%.6e,%.4e,%.3f\n", problem_names[problem], names[v], n, e, cpu,
                        (double)n * (double)gf_sh1d_steps(s) / fmax(cpu, 1e-9), front);
                 gf_sh1d_free(s);
