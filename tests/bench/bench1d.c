@@ -67,6 +67,24 @@ static void cap_init(double x, void *c, double *h, double *u)
     gf_spreading_cap_sample(&cap, x, 0.0, h, u);
 }
 
+/* the configurations: the kinetic schemes (order 1, the paper's; order 2,
+ * the reconstruction with Heun's method) and RKDG P0-P2, without and with
+ * the start-up refinement (+s3: startup_levels 3, +s5: 5); the start-up
+ * variants run on the dry-front problems only */
+struct variant {
+    const char *name;
+    int kinetic, scheme_or_degree, order, levels;
+};
+static const struct variant variants[] = {
+    {"kinetic1", 1, 1, 1, 0},         {"kinetic2", 1, 2, 1, 0},         {"kinetic3", 1, 3, 1, 0},
+    {"rkdgP0", 0, 0, 0, 0},           {"rkdgP1", 0, 1, 0, 0},           {"rkdgP2", 0, 2, 0, 0},
+    {"kinetic1o2", 1, 1, 2, 0},       {"kinetic3o2", 1, 3, 2, 0},       {"kinetic3+s3", 1, 3, 1, 3},
+    {"rkdgP0+s3", 0, 0, 0, 3},        {"rkdgP1+s3", 0, 1, 0, 3},        {"rkdgP2+s3", 0, 2, 0, 3},
+    {"kinetic3o2+s3", 1, 3, 2, 3},    {"rkdgP1+s5", 0, 1, 0, 5},        {"rkdgP2+s5", 0, 2, 0, 5},
+    {"kinetic3o2+s5", 1, 3, 2, 5},
+};
+#define NVARIANTS ((int)(sizeof variants / sizeof variants[0]))
+
 static void configure(gf_sh1d_config *c, int problem, int variant, size_t n)
 {
     gf_sh1d_config_init(c);
@@ -102,15 +120,12 @@ static void configure(gf_sh1d_config *c, int problem, int variant, size_t n)
         gf_friction_set(&c->friction, "mu", tan(GF_PI / 6));
         gf_friction_set(&c->friction, "u0", 0.0);
     }
-    /* variants 0-5: the six schemes; 6-11: the same with startup_levels 3;
-     * 12, 13: RKDG P1, P2 with startup_levels 5 (the dry-front problems) */
-    if (variant >= 12)
-        c->degree = variant - 11;
-    else if (variant % 6 < 3)
-        c->scheme = variant % 6 + 1;
+    const struct variant *v = &variants[variant];
+    if (v->kinetic)
+        c->scheme = v->scheme_or_degree, c->kinetic_order = v->order;
     else
-        c->degree = variant % 6 - 3;
-    c->startup_levels = variant >= 12 ? 5 : variant >= 6 ? 3 : 0;
+        c->degree = v->scheme_or_degree;
+    c->startup_levels = v->levels;
 }
 
 static gf_sh1d *run(int problem, int variant, size_t n, double *cpu)
@@ -118,7 +133,7 @@ static gf_sh1d *run(int problem, int variant, size_t n, double *cpu)
     gf_sh1d_config c;
     configure(&c, problem, variant, n);
     gf_sh1d *s;
-    if (gf_sh1d_alloc(variant < 12 && variant % 6 < 3 ? gf_sh1d_kinetic : gf_sh1d_rkdg, &c, &s)) {
+    if (gf_sh1d_alloc(variants[variant].kinetic ? gf_sh1d_kinetic : gf_sh1d_rkdg, &c, &s)) {
         fprintf(stderr, "bench1d: %s\n", gf_error_detail());
         exit(1);
     }
@@ -184,10 +199,6 @@ static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *
 
 int main(void)
 {
-    static const char *names[14] = {"kinetic1",    "kinetic2",    "kinetic3",    "rkdgP0",
-                                    "rkdgP1",      "rkdgP2",      "kinetic1+s3", "kinetic2+s3",
-                                    "kinetic3+s3", "rkdgP0+s3",   "rkdgP1+s3",   "rkdgP2+s3",
-                                    "rkdgP1+s5",   "rkdgP2+s5"};
     gf_riemann ex, ritter, incline;
     gf_riemann_solve(&ex, 0.4, 1.0, 0.0, 0.5, 0.0, 5.0);
     gf_riemann_solve(&ritter, 1.0, 1.0, 0.0, 0.0, 0.0, 6.0);
@@ -197,9 +208,9 @@ int main(void)
     gf_sh1d *ref = run(SMOOTH, 5, 2048, &cpu);
     printf("problem,scheme,N,L1_error,cpu_s,cell_updates_per_s,front_error_cells\n");
     for (int problem = 0; problem < NPROBLEMS; ++problem)
-        for (int v = 0; v < 14; ++v)
+        for (int v = 0; v < NVARIANTS; ++v)
             for (size_t n = 50; n <= 1600; n *= 2) {
-                if (v >= 6 && !DRY_FRONT(problem))
+                if (variants[v].levels > 0 && !DRY_FRONT(problem))
                     continue;
                 /* repeat short runs so that the CPU time is measurable */
                 double total = 0;
@@ -220,7 +231,7 @@ int main(void)
                     e = gf_sh1d_l1_difference(s, ref);
                 else
                     e = dry_front_errors(s, problem, &ritter, &incline, &front);
-                printf("%s,%s,%zu,%.6e,%.6e,%.4e,%.3f\n", problem_names[problem], names[v], n, e, cpu,
+                printf("%s,%s,%zu,%.6e,%.6e,%.4e,%.3f\n", problem_names[problem], variants[v].name, n, e, cpu,
                        (double)n * (double)gf_sh1d_steps(s) / fmax(cpu, 1e-9), front);
                 gf_sh1d_free(s);
             }

@@ -22,7 +22,8 @@
  *                 parabola (x0, K, l: max(K/10, K - l (x-x0)^2)) |
  *                 sinusoid (the kinetic paper's test 5) | file (CSV x,h,u) |
  *                 cap (x0, radius, depth: sqrt(r^2 - (x-x0)^2) - depth, >= 0)
- *   [solver]      method (rkdg | kinetic), degree (2), scheme (3), cfl,
+ *   [solver]      method (rkdg | kinetic), degree (2), scheme (3),
+ *                 kinetic_order (1 | 2: reconstruction and Heun; schemes 1, 3), cfl,
  *                 dt, limiter (moment | minmod | none; minmod is the rkdg
  *                 paper's eq. 13 with gamma), gamma (0.5), tvb_m (0 for
  *                 minmod, 1 for moment),
@@ -416,6 +417,7 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     get_name(&d, "solver", "method", "rkdg", cs->method != NULL, gf_sh1d_type_names());
     c.degree = (int)get_int(&d, "solver", "degree", 2, 0, 2);
     c.scheme = (int)get_int(&d, "solver", "scheme", 3, 1, 3);
+    c.kinetic_order = (int)get_int(&d, "solver", "kinetic_order", 1, 1, 2);
     c.cfl = get_num(&d, "solver", "cfl", 0.0, 0.0, 1.0);
     c.dt_fixed = get_num(&d, "solver", "dt", 0.0, 0.0, 1e300);
     static const char *const onoff[] = {"off", "on", NULL};

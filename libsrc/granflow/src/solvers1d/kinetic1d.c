@@ -13,7 +13,10 @@ typedef struct kinetic {
     double *f1, *f2;        /* interface fluxes, n + 1 (interface i between cells i, i+1) */
     unsigned char *slow;    /* per cell */
     unsigned char *mod;     /* per interface: modified flux */
+    unsigned char *first;   /* per interface: first-order states (kinetic_order 2) */
     double *hn, *qn;        /* new depth and discharge */
+    double *dh, *du;        /* kinetic_order 2: limited slopes of h and u per cell (n + 2) */
+    double *h0, *q0;        /* kinetic_order 2: the state at the start of the step */
 } kinetic;
 
 void gf_kinetic_half_fluxes(double h, double u, double beta, double p[2], double n[2])
@@ -68,9 +71,14 @@ static gf_status kinetic_init(gf_sh1d *s)
     if (!k)
         return gf_fail(GF_ENOMEM, "kinetic: out of memory");
     const size_t n = s->n;
-    /* one block: h, q, beta, hn, qn (n+2 each), f1, f2 (n+1 each); flags separately */
-    double *blk = calloc(5 * (n + 2) + 2 * (n + 1), sizeof *blk);
-    unsigned char *flags = calloc(2 * (n + 2), 1);
+    if (s->cfg.kinetic_order == 2 && s->cfg.scheme == 2) {
+        free(k);
+        return gf_fail(GF_EINVAL, "kinetic_order = 2 needs scheme 1 or 3: Scheme 2 takes the modified "
+                                  "flux of the cell means at every interface, so nothing is reconstructed");
+    }
+    /* one block: h, q, beta, hn, qn, dh, du, h0, q0 (n+2 each), f1, f2 (n+1 each); flags separately */
+    double *blk = calloc(9 * (n + 2) + 2 * (n + 1), sizeof *blk);
+    unsigned char *flags = calloc(3 * (n + 2), 1);
     if (!blk || !flags) {
         free(blk);
         free(flags);
@@ -82,12 +90,20 @@ static gf_status kinetic_init(gf_sh1d *s)
     k->beta = blk + 2 * (n + 2);
     k->hn = blk + 3 * (n + 2);
     k->qn = blk + 4 * (n + 2);
-    k->f1 = blk + 5 * (n + 2);
+    k->dh = blk + 5 * (n + 2);
+    k->du = blk + 6 * (n + 2);
+    k->h0 = blk + 7 * (n + 2);
+    k->q0 = blk + 8 * (n + 2);
+    k->f1 = blk + 9 * (n + 2);
     k->f2 = k->f1 + (n + 1);
     k->slow = flags;
     k->mod = flags + (n + 2);
+    k->first = flags + 2 * (n + 2);
     s->impl = k;
-    s->cfl = s->cfg.cfl > 0.0 ? s->cfg.cfl : 0.9;
+    /* second order: the cell's mass leaves through both of its reconstructed
+     * edge states, each carrying half of it (h = (h_L + h_R)/2), so the
+     * positivity bound of Theorem 3 halves */
+    s->cfl = s->cfg.cfl > 0.0 ? s->cfg.cfl : s->cfg.kinetic_order == 2 ? 0.45 : 0.9;
     return GF_SUCCESS;
 }
 
@@ -157,14 +173,81 @@ static void update_beta(const gf_sh1d *s, kinetic *k)
     k->beta[n + 1] = k->beta[n];
 }
 
+static inline double minmod(double a, double b)
+{
+    return a * b <= 0.0 ? 0.0 : fabs(a) < fabs(b) ? a : b;
+}
+
+/* kinetic_order 2 (the higher-order method the kinetic paper leaves to
+ * future work, section 6): slopes per cell (differences over one cell) of h
+ * and of u = q/h, minmod-limited against both neighbours; u only from wet
+ * neighbours (a dry neighbour has no velocity), 0 in a dry cell.  Ghosts:
+ * periodic copies; a wall's mirror image (h even, u odd: dh_0 = -dh_1,
+ * du_0 = du_1); zero-gradient boundaries constant (no slope). */
+static void cell_slopes(const gf_sh1d *s, const kinetic *k, size_t i, double *dh, double *du)
+{
+    const double he = s->cfg.h_eps, *h = k->h;
+    *dh = minmod(h[i + 1] - h[i], h[i] - h[i - 1]);
+    *du = 0.0;
+    if (h[i] <= he)
+        return;
+    const double u = gf_sh1d_velocity(s, h[i], k->q[i]);
+    const double dl = h[i - 1] > he ? u - gf_sh1d_velocity(s, h[i - 1], k->q[i - 1]) : 0.0;
+    const double dr = h[i + 1] > he ? gf_sh1d_velocity(s, h[i + 1], k->q[i + 1]) - u : 0.0;
+    *du = h[i - 1] > he && h[i + 1] > he ? minmod(dl, dr) : 0.0;
+}
+
+static void slopes(const gf_sh1d *s, kinetic *k)
+{
+    const size_t n = s->n;
+    for (size_t i = 1; i <= n; ++i)
+        cell_slopes(s, k, i, &k->dh[i], &k->du[i]);
+    switch (s->cfg.bc_left) {
+    case GF_BC_PERIODIC: k->dh[0] = k->dh[n], k->du[0] = k->du[n]; break;
+    case GF_BC_WALL: k->dh[0] = -k->dh[1], k->du[0] = k->du[1]; break;
+    default: k->dh[0] = k->du[0] = 0.0; break;
+    }
+    switch (s->cfg.bc_right) {
+    case GF_BC_PERIODIC: k->dh[n + 1] = k->dh[1], k->du[n + 1] = k->du[1]; break;
+    case GF_BC_WALL: k->dh[n + 1] = -k->dh[n], k->du[n + 1] = k->du[n]; break;
+    default: k->dh[n + 1] = k->du[n + 1] = 0.0; break;
+    }
+}
+
+/* The states at interface f (between cells f and f+1) that the kinetic
+ * fluxes take: the cell means, or with kinetic_order 2 the reconstructed
+ * edge values, except at an interface with the modified flux (slow cells:
+ * the rest balance is that of the means), one that positivity put back to
+ * first order, and one next to a dry cell (towards a dry cell the wet cell's
+ * mean, so the tip of a front is not reconstructed to zero). */
+static void interface_states(const gf_sh1d *s, const kinetic *k, size_t f, double *hl, double *ul, double *hr,
+                             double *ur)
+{
+    *hl = k->h[f], *hr = k->h[f + 1];
+    *ul = gf_sh1d_velocity(s, *hl, k->q[f]), *ur = gf_sh1d_velocity(s, *hr, k->q[f + 1]);
+    if (s->cfg.kinetic_order != 2 || (k->mod[f] && k->slow[f] && k->slow[f + 1]) || k->first[f] || *hl <= s->cfg.h_eps ||
+        *hr <= s->cfg.h_eps)
+        return;
+    *hl += 0.5 * k->dh[f], *ul += 0.5 * k->du[f];
+    *hr -= 0.5 * k->dh[f + 1], *ur -= 0.5 * k->du[f + 1];
+}
+
 static double kinetic_max_dt(const gf_sh1d *s)
 {
     kinetic *k = s->impl;
     update_beta(s, k);
+    const int o2 = s->cfg.kinetic_order == 2;
+    if (o2)
+        slopes(s, k);
     double smax = 0.0;
     for (size_t i = 1; i <= s->n; ++i) {
         const double u = gf_sh1d_velocity(s, k->h[i], k->q[i]);
         smax = fmax(smax, fabs(u) + sqrt(2.0 * k->beta[i] * k->h[i])); /* Theorem 3 */
+        if (o2 && k->h[i] > s->cfg.h_eps) /* and of the reconstructed edge states */
+            for (int side = -1; side <= 1; side += 2) {
+                const double he = k->h[i] + 0.5 * side * k->dh[i], ue = u + 0.5 * side * k->du[i];
+                smax = fmax(smax, fabs(ue) + sqrt(2.0 * k->beta[i] * fmax(he, 0.0)));
+            }
     }
     return smax > 0.0 ? s->cfl * s->dx / smax : HUGE_VAL;
 }
@@ -191,9 +274,8 @@ static double g_tilde(const gf_sh1d *s, const kinetic *k, size_t i)
 static void interface_flux(const gf_sh1d *s, kinetic *k, size_t f)
 {
     /* interface f between cells f and f+1 (ghost-indexed) */
-    const double hl = k->h[f], hr = k->h[f + 1];
-    const double ul = gf_sh1d_velocity(s, hl, k->q[f]), ur = gf_sh1d_velocity(s, hr, k->q[f + 1]);
-    double pl[2], nl[2], pr[2], nr[2];
+    double hl, ul, hr, ur, pl[2], nl[2], pr[2], nr[2];
+    interface_states(s, k, f, &hl, &ul, &hr, &ur);
     if (k->mod[f]) { /* eq. 25: mean depth, upwind velocity */
         const double hm = 0.5 * (hl + hr);
         gf_kinetic_half_fluxes(hm, ul, k->beta[f], pl, nl);
@@ -206,18 +288,31 @@ static void interface_flux(const gf_sh1d *s, kinetic *k, size_t f)
     k->f2[f] = pl[1] + nr[1];
 }
 
-static gf_status kinetic_step(gf_sh1d *s, double dt)
+/* One forward-Euler step of the scheme: (k->h, k->q) -> itself. */
+static gf_status kinetic_stage(gf_sh1d *s, double dt)
 {
     kinetic *k = s->impl;
     const size_t n = s->n;
     const double lam = dt / s->dx;
-    const int scheme = s->cfg.scheme;
+    const int scheme = s->cfg.scheme, o2 = s->cfg.kinetic_order == 2;
     fill_ghosts(s, k->h, k->q);
     update_beta(s, k);
+    if (o2)
+        slopes(s, k);
+    memset(k->first, 0, n + 1);
 
     for (size_t i = 0; i <= n + 1; ++i) {
         const double u = gf_sh1d_velocity(s, k->h[i], k->q[i]);
         k->slow[i] = k->q[i] == 0.0 || fabs(k->q[i]) < fabs(dt * accel(s, k->h[i], u) * k->h[i]);
+        /* kinetic_order 2: a dry cell is not slow, so the interface at a
+         * front takes the standard flux.  The modified flux there (mean
+         * depth of the tip and the dry cell) sends back the left-moving
+         * half of a phantom state of that depth: the newly wetted cell gets
+         * more momentum than mass, and at second order, without the first
+         * order's diffusion, a film ran ahead of the front at twice the
+         * front speed (Ritter). */
+        if (o2 && k->h[i] <= s->cfg.h_eps)
+            k->slow[i] = 0;
     }
     for (size_t f = 0; f <= n; ++f) {
         k->mod[f] = scheme == 2 || (scheme == 3 && (k->slow[f] || k->slow[f + 1]));
@@ -228,8 +323,9 @@ static gf_status kinetic_step(gf_sh1d *s, double dt)
         int changed = 0;
         for (size_t i = 1; i <= n; ++i) {
             k->hn[i] = k->h[i] - lam * (k->f1[i] - k->f1[i - 1]);
-            if (k->hn[i] < 0.0 && (k->mod[i] || k->mod[i - 1])) {
+            if (k->hn[i] < 0.0 && (k->mod[i] || k->mod[i - 1] || (o2 && !(k->first[i] && k->first[i - 1])))) {
                 k->mod[i] = k->mod[i - 1] = 0;
+                k->first[i] = k->first[i - 1] = 1; /* kinetic_order 2: the cell means */
                 interface_flux(s, k, i);
                 interface_flux(s, k, i - 1);
                 changed = 1;
@@ -276,6 +372,34 @@ static gf_status kinetic_step(gf_sh1d *s, double dt)
     return GF_SUCCESS;
 }
 
+/* kinetic_order 1: the paper's forward-Euler step.  2: Heun's method (the
+ * two-stage SSP Runge-Kutta scheme), u^(1) = E(u^n), u^(n+1) = (u^n +
+ * E(u^(1)))/2, with E the reconstructed step: a convex combination of
+ * positivity-preserving steps stays positive, and a state at rest (every
+ * interface slow, the means' rest balance) stays at rest in both stages. */
+static gf_status kinetic_step(gf_sh1d *s, double dt)
+{
+    kinetic *k = s->impl;
+    if (s->cfg.kinetic_order != 2)
+        return kinetic_stage(s, dt);
+    const size_t n = s->n;
+    memcpy(k->h0, k->h, (n + 2) * sizeof *k->h);
+    memcpy(k->q0, k->q, (n + 2) * sizeof *k->q);
+    gf_status st;
+    if ((st = kinetic_stage(s, dt)) || (st = kinetic_stage(s, dt))) {
+        memcpy(k->h, k->h0, (n + 2) * sizeof *k->h); /* the state changes only on success */
+        memcpy(k->q, k->q0, (n + 2) * sizeof *k->q);
+        return st;
+    }
+    for (size_t i = 1; i <= n; ++i) {
+        const double h = 0.5 * (k->h0[i] + k->h[i]);
+        k->q[i] = h > s->cfg.h_eps ? 0.5 * (k->q0[i] + k->q[i]) : 0.0;
+        k->h[i] = h;
+    }
+    fill_ghosts(s, k->h, k->q);
+    return GF_SUCCESS;
+}
+
 static void kinetic_means(const gf_sh1d *s, double *h, double *q)
 {
     const kinetic *k = s->impl;
@@ -283,12 +407,20 @@ static void kinetic_means(const gf_sh1d *s, double *h, double *q)
     memcpy(q, k->q + 1, s->n * sizeof *q);
 }
 
+/* The cell mean, or with kinetic_order 2 the limited linear reconstruction
+ * of h and u at xi in [-1, 1] (q = h u). */
 static void kinetic_eval(const gf_sh1d *s, size_t cell, double xi, double *h, double *q)
 {
-    (void)xi;
     const kinetic *k = s->impl;
     *h = k->h[cell + 1];
     *q = k->q[cell + 1];
+    if (s->cfg.kinetic_order != 2 || *h <= s->cfg.h_eps)
+        return;
+    double dh, du;
+    cell_slopes(s, k, cell + 1, &dh, &du);
+    const double u = gf_sh1d_velocity(s, *h, *q) + 0.5 * xi * du;
+    *h = fmax(0.0, *h + 0.5 * xi * dh);
+    *q = *h * u;
 }
 
 static double kinetic_min_depth(const gf_sh1d *s)

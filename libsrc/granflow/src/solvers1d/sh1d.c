@@ -35,6 +35,7 @@ void gf_sh1d_config_init(gf_sh1d_config *c)
     c->tvb_m = 1.0;
     c->velocity_limiter = 1;
     c->scheme = 3;
+    c->kinetic_order = 1;
     c->startup_levels = 0;
 }
 
@@ -94,6 +95,8 @@ static gf_status check_config(const gf_sh1d_config *c)
         return gf_fail(GF_EDOM, "degree = %d is outside {0, 1, 2}", c->degree);
     if (c->scheme < 1 || c->scheme > 3)
         return gf_fail(GF_EDOM, "kinetic scheme = %d is outside {1, 2, 3}", c->scheme);
+    if (c->kinetic_order < 1 || c->kinetic_order > 2)
+        return gf_fail(GF_EDOM, "kinetic_order = %d is outside {1, 2}", c->kinetic_order);
     if (c->startup_levels < 0 || c->startup_levels > 5)
         return gf_fail(GF_EDOM, "startup_levels = %d is outside 0..5", c->startup_levels);
     if (c->startup_levels > 0 && (c->n_cells << c->startup_levels) > 100000000)
