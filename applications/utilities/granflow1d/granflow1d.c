@@ -417,6 +417,8 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     get_name(&d, "solver", "method", "rkdg", cs->method != NULL, gf_sh1d_type_names());
     c.degree = (int)get_int(&d, "solver", "degree", 2, 0, 2);
     c.scheme = (int)get_int(&d, "solver", "scheme", 3, 1, 3);
+    if (cs->method == gf_sh1d_rkdg && find(&d, "solver", "kinetic_order"))
+        die("[solver] kinetic_order applies to method = kinetic (rkdg's order is degree + 1)");
     c.kinetic_order = (int)get_int(&d, "solver", "kinetic_order", 1, 1, 2);
     c.cfl = get_num(&d, "solver", "cfl", 0.0, 0.0, 1.0);
     c.dt_fixed = get_num(&d, "solver", "dt", 0.0, 0.0, 1e300);
