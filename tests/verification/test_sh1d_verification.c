@@ -299,7 +299,7 @@ static void silo_starts_and_stops(void **state)
     struct { const gf_sh1d_type *t; int v; const char *name; } cases[] = {
         {gf_sh1d_kinetic, 2, "kinetic 2"}, {gf_sh1d_kinetic, 3, "kinetic 3"},
         {gf_sh1d_rkdg, 0, "rkdg P0"},      {gf_sh1d_rkdg, 1, "rkdg P1"},
-        {gf_sh1d_rkdg, 2, "rkdg P2"},
+        {gf_sh1d_rkdg, 2, "rkdg P2"},      {gf_sh1d_kinetic, 13, "kinetic 3 o2"},
     };
     for (size_t j = 0; j < sizeof cases / sizeof cases[0]; ++j) {
         gf_sh1d_config c;
@@ -356,7 +356,7 @@ static void depth_nonnegative_with_dry_fronts(void **state)
     struct { const gf_sh1d_type *t; int v; const char *name; double bound; } cases[] = {
         {gf_sh1d_kinetic, 1, "kinetic 1", 0.025}, {gf_sh1d_kinetic, 3, "kinetic 3", 0.025},
         {gf_sh1d_rkdg, 0, "rkdg P0", 0.05},      {gf_sh1d_rkdg, 1, "rkdg P1", 0.012},
-        {gf_sh1d_rkdg, 2, "rkdg P2", 0.013},
+        {gf_sh1d_rkdg, 2, "rkdg P2", 0.013},      {gf_sh1d_kinetic, 13, "kinetic 3 o2", 0.013},
     };
     for (size_t j = 0; j < sizeof cases / sizeof cases[0]; ++j) {
         gf_sh1d_config c;
