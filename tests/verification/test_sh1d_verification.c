@@ -82,8 +82,9 @@ static void smooth_init(double x, void *ctx, double *h, double *u)
     *h = 1 + 0.2 * sin(2 * GF_PI * x);
     *u = 1 + 0.1 * cos(2 * GF_PI * x);
 }
-/* limited = 0: every limiter off; 1: the default limiters */
-static gf_sh1d *smooth_run_with(int degree, size_t n, int limited)
+/* a scheme (set_variant) on the smooth problem to t = 0.1; limited = 0:
+ * every RKDG limiter off; 1: the default limiters */
+static gf_sh1d *smooth_run_of(const gf_sh1d_type *t, int variant, size_t n, int limited)
 {
     gf_sh1d_config c;
     gf_sh1d_config_init(&c);
@@ -92,15 +93,19 @@ static gf_sh1d *smooth_run_with(int degree, size_t n, int limited)
     c.x_max = 1;
     c.zeta = 35 * GF_DEG;
     c.bc_left = c.bc_right = GF_BC_PERIODIC;
-    c.degree = degree;
+    set_variant(&c, t, variant);
     if (!limited) {
         c.limiter = GF_LIMITER_NONE;
         c.velocity_limiter = 0;
     }
     coulomb(&c, 30 * GF_DEG);
-    gf_sh1d *s = make(gf_sh1d_rkdg, &c, smooth_init, NULL);
+    gf_sh1d *s = make(t, &c, smooth_init, NULL);
     advance(s, 0.1);
     return s;
+}
+static gf_sh1d *smooth_run_with(int degree, size_t n, int limited)
+{
+    return smooth_run_of(gf_sh1d_rkdg, degree, n, limited);
 }
 static gf_sh1d *smooth_run(int degree, size_t n) { return smooth_run_with(degree, n, 0); }
 static void dg_orders_on_smooth_problem(void **state)
@@ -792,25 +797,11 @@ static void resolved_ritter_front_every_scheme(void **state)
  *    h = 1e-3 front's absolute error falls at first order from N = 800 to
  *    1600 (order 1: about 1/2); mass to 1e-12 (Ritter);
  *  - with startup_levels = 5: on the incline the front within 3 cells at
- *    N = 400, 800, 1600; on Ritter within 8 (the kinetic flux's first steps
- *    on each level leave a lag the reconstruction keeps; from a resolved
- *    start see resolved_ritter_front_every_scheme);
+ *    N = 400, 800, 1600 (measured -0.55, -0.59, +0.68); on Ritter within 6
+ *    (-3.6, -4.9, -3.4: each level's phase starts from a tip only about 20
+ *    of its cells out, which costs this scheme a few cells, RKDG P1 none;
+ *    from a resolved start see resolved_ritter_front_every_scheme);
  *  - Scheme 2, which takes the means at every interface, is refused. */
-static gf_sh1d *kinetic_smooth_run(int variant, size_t n)
-{
-    gf_sh1d_config c;
-    gf_sh1d_config_init(&c);
-    c.n_cells = n;
-    c.x_min = 0;
-    c.x_max = 1;
-    c.zeta = 35 * GF_DEG;
-    c.bc_left = c.bc_right = GF_BC_PERIODIC;
-    set_variant(&c, gf_sh1d_kinetic, variant);
-    coulomb(&c, 30 * GF_DEG);
-    gf_sh1d *s = make(gf_sh1d_kinetic, &c, smooth_init, NULL);
-    advance(s, 0.1);
-    return s;
-}
 static void kinetic_order_two(void **state)
 {
     (void)state;
@@ -819,7 +810,7 @@ static void kinetic_order_two(void **state)
     double e1[3], e2[3];
     for (int k = 0; k < 3; ++k) {
         const size_t n = (size_t)64 << k;
-        gf_sh1d *a = kinetic_smooth_run(3, n), *b = kinetic_smooth_run(13, n);
+        gf_sh1d *a = smooth_run_of(gf_sh1d_kinetic, 3, n, 1), *b = smooth_run_of(gf_sh1d_kinetic, 13, n, 1);
         e1[k] = gf_sh1d_l1_difference(a, ref);
         e2[k] = gf_sh1d_l1_difference(b, ref);
         gf_sh1d_free(a);
@@ -863,7 +854,7 @@ static void kinetic_order_two(void **state)
             double travel, l1;
             const double e = front_error(p, gf_sh1d_kinetic, 13, ns[k], &travel, &l1);
             printf(" N=%zu %+.2f (travel %.0f) %.2e;", ns[k], e, travel, l1);
-            assert_true(fabs(e) <= (p == INCLINE ? 3.0 : 8.0));
+            assert_true(fabs(e) <= (p == INCLINE ? 3.0 : 6.0));
         }
         printf("\n");
     }

@@ -252,6 +252,18 @@ static double kinetic_max_dt(const gf_sh1d *s)
     return smax > 0.0 ? s->cfl * s->dx / smax : HUGE_VAL;
 }
 
+/* The largest |u| + sqrt(beta h): the speed of the waves, below the step
+ * bound's |u| + sqrt(2 beta h) (the start-up refinement's length). */
+static double kinetic_wave_speed(const gf_sh1d *s)
+{
+    kinetic *k = s->impl;
+    update_beta(s, k);
+    double a = 0.0;
+    for (size_t i = 1; i <= s->n; ++i)
+        a = fmax(a, fabs(gf_sh1d_velocity(s, k->h[i], k->q[i])) + sqrt(k->beta[i] * k->h[i]));
+    return a;
+}
+
 /* g(u) = g sin zeta - sgn(u) tau/(rho h): net acceleration of a moving cell. */
 static double accel(const gf_sh1d *s, double h, double u)
 {
@@ -435,5 +447,6 @@ static double kinetic_min_depth(const gf_sh1d *s)
 static const gf_sh1d_type kinetic_type = {
     "kinetic",     kinetic_init,  kinetic_free, kinetic_set_initial, kinetic_max_dt,
     kinetic_step,  kinetic_means, kinetic_eval,     kinetic_min_depth, kinetic_restrict_from,
+    kinetic_wave_speed,
 };
 const gf_sh1d_type *const gf_sh1d_kinetic = &kinetic_type;

@@ -230,7 +230,15 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
         s->startup = NULL;
         return GF_SUCCESS;
     }
-    const double a = s->startup->cfl * s->startup->dx / dtf;
+    /* the kinetic schemes' step bound is |u| + sqrt(2 beta h) (Theorem 3):
+     * they report the wave speed itself, so that the start-up is as long on
+     * every scheme */
+    const double a = s->type->wave_speed ? s->type->wave_speed(s->startup) : s->startup->cfl * s->startup->dx / dtf;
+    if (!(a > 0.0) || !isfinite(a)) {
+        gf_sh1d_free(s->startup);
+        s->startup = NULL;
+        return GF_SUCCESS;
+    }
     s->t_startup = STARTUP_CELLS * s->dx / (3.0 * a);
     return GF_SUCCESS;
 }

@@ -18,6 +18,9 @@ struct gf_sh1d_type {
      * configuration on twice the cells: the L2 projection (cell means
      * exactly), then the scheme's limiting as after set_initial */
     gf_status (*restrict_from)(gf_sh1d *coarse, const gf_sh1d *fine);
+    /* the largest |u| + sqrt(beta h) of the state (the start-up's length);
+     * NULL: the speed of max_dt's step bound */
+    double (*wave_speed)(const gf_sh1d *s);
 };
 
 struct gf_sh1d {
