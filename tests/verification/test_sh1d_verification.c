@@ -783,6 +783,63 @@ static void resolved_ritter_front_every_scheme(void **state)
     }
 }
 
+/* P2's order away from a dry front (issue 11: orders measured away from the
+ * front).  The spreading cap (the dry-front test's) at t = 1, the L1 error
+ * of the point values in |x| < x_f / 2, which the error made at the cap's
+ * edge has not reached yet (by t = 5 it has: there every degree is second
+ * order, see Speed against error): P1 at order >= 1.9, P2 at >= 2.8
+ * between N = 200 and 800 (measured 2.08, 2.01; 3.11, 2.98), P2 below P1 /
+ * 100 at N = 800 (1.9e-7 against 3.6e-5), and P2 on N = 200 below P1 on
+ * 800 (1.3e-5, 3.6e-5) with about a quarter of P1's cell updates. */
+static void p2_order_away_from_the_front(void **state)
+{
+    (void)state;
+    gf_spreading_cap cap;
+    assert_int_equal(gf_spreading_cap_init(&cap, 1.0, 1.0, 2.0, 0.0), GF_SUCCESS);
+    const double T = 1.0;
+    double lam, dlam;
+    assert_int_equal(gf_spreading_cap_stretch(&cap, T, &lam, &dlam), GF_SUCCESS);
+    const double xin = 0.5 * lam * cap.l0;
+    double e[3][3];
+    for (int k = 1; k <= 2; ++k) {
+        printf("  cap at t = 1, |x| < %.2f, P%d:", xin, k);
+        for (int j = 0; j < 3; ++j) {
+            gf_sh1d_config c;
+            gf_sh1d_config_init(&c);
+            c.n_cells = (size_t)200 << j;
+            c.x_min = -15;
+            c.x_max = 15;
+            c.degree = k;
+            gf_sh1d *s = make(gf_sh1d_rkdg, &c, cap_init, &cap);
+            advance(s, T);
+            const double dx = gf_sh1d_dx(s);
+            double l1 = 0.0;
+            for (size_t i = 0; i < c.n_cells; ++i)
+                for (int q = 0; q < 8; ++q) {
+                    const double x = gf_sh1d_cell_centre(s, i) + dx * ((q + 0.5) / 8.0 - 0.5);
+                    if (fabs(x) >= xin)
+                        continue;
+                    double hn, un, he, ue;
+                    assert_int_equal(gf_sh1d_eval(s, x, &hn, &un), GF_SUCCESS);
+                    gf_spreading_cap_sample(&cap, x, T, &he, &ue);
+                    l1 += fabs(hn - he) * dx / 8.0;
+                }
+            e[k][j] = l1;
+            printf(" N=%zu %.2e%s", c.n_cells, l1, j ? "" : ";");
+            if (j)
+                printf(" (order %.2f);", log2(e[k][j - 1] / l1));
+            gf_sh1d_free(s);
+        }
+        printf("\n");
+    }
+    for (int j = 1; j < 3; ++j) {
+        assert_true(log2(e[1][j - 1] / e[1][j]) >= 1.9);
+        assert_true(log2(e[2][j - 1] / e[2][j]) >= 2.8);
+    }
+    assert_true(e[2][2] < 0.01 * e[1][2]);
+    assert_true(e[2][0] < e[1][2]);
+}
+
 /* ---- kinetic_order 2 ------------------------------------------------------ */
 /* The kinetic schemes with the minmod-limited linear reconstruction of h
  * and u and Heun's method (kinetic_order 2; the paper's section 6 leaves a
@@ -1023,6 +1080,7 @@ int main(void)
         cmocka_unit_test(deep_startup_refinement_p2_past_p1),
         cmocka_unit_test(rkdg_limiters_never_abort),
         cmocka_unit_test(p2_beats_p1_with_the_limiters_on),
+        cmocka_unit_test(p2_order_away_from_the_front),
         cmocka_unit_test(kinetic_rest_at_every_courant_number),
         cmocka_unit_test(kinetic_order_two),
         cmocka_unit_test(silo_starts_and_stops),
