@@ -30,7 +30,8 @@
  *                 velocity_limiter (on | off), h_eps, h_semi,
  *                 startup_levels (0; 1..5: the first phase on grids 2^L..2
  *                 times finer, for discontinuous initial data such as a dam
- *                 break on a dry bed)
+ *                 break on a dry bed); the other method's keys are checked and
+ *                 named on stderr as ignored
  *   [output]      times (list), dir (.), name (case file stem), plot (no | yes),
  *                 exact (no | riemann: exact columns for a dam | dressler: Dressler's
  *                 solution for a dam on a dry bed with chezy friction), front_h (1e-3),
@@ -417,8 +418,21 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     get_name(&d, "solver", "method", "rkdg", cs->method != NULL, gf_sh1d_type_names());
     c.degree = (int)get_int(&d, "solver", "degree", 2, 0, 2);
     c.scheme = (int)get_int(&d, "solver", "scheme", 3, 1, 3);
-    if (cs->method == gf_sh1d_rkdg && find(&d, "solver", "kinetic_order"))
-        die("[solver] kinetic_order applies to method = kinetic (rkdg's order is degree + 1)");
+    /* the other method's keys: read and range-checked like the rest (a
+     * case file can switch methods on the command line), and named on
+     * stderr as not acting */
+    {
+        static const char *const dg_keys[] = {"degree", "limiter", "gamma", "tvb_m", "velocity_limiter"};
+        static const char *const kin_keys[] = {"scheme", "kinetic_order"};
+        const int kinetic = cs->method == gf_sh1d_kinetic;
+        const char *const *keys = kinetic ? dg_keys : kin_keys;
+        const size_t nk = kinetic ? sizeof dg_keys / sizeof *dg_keys : sizeof kin_keys / sizeof *kin_keys;
+        for (size_t i = 0; i < nk; ++i)
+            for (int j = 0; j < d.n; ++j)
+                if (!strcmp(d.e[j].section, "solver") && !strcmp(d.e[j].key, keys[i]))
+                    fprintf(stderr, "granflow1d: %s: note: [solver] %s applies to method = %s, not %s; ignored\n",
+                            file_name, keys[i], kinetic ? "rkdg" : "kinetic", kinetic ? "kinetic" : "rkdg");
+    }
     c.kinetic_order = (int)get_int(&d, "solver", "kinetic_order", 1, 1, 2);
     c.cfl = get_num(&d, "solver", "cfl", 0.0, 0.0, 1.0);
     c.dt_fixed = get_num(&d, "solver", "dt", 0.0, 0.0, 1e300);
