@@ -94,9 +94,9 @@ typedef struct gf_sh1d_config {
                                 linear reconstruction of h and u with Heun's method (the
                                 higher-order method the paper leaves to future work,
                                 section 6), Courant number 0.45 by default; Schemes 1 and 3
-                                (Scheme 2 reconstructs nothing); slow interfaces (Scheme
-                                3's modified flux) keep the cell means, so rest is kept
-                                as at order 1 */
+                                (Scheme 2 reconstructs nothing); interfaces between two
+                                slow cells keep the cell means, so rest is kept as at
+                                order 1 */
     /* both */
     int startup_levels;      /* start-up refinement L in 0..5 (0, the default: off).  The
                                 first phase, until the waves of the initial state have

@@ -216,10 +216,12 @@ static void slopes(const gf_sh1d *s, kinetic *k)
 
 /* The states at interface f (between cells f and f+1) that the kinetic
  * fluxes take: the cell means, or with kinetic_order 2 the reconstructed
- * edge values, except at an interface with the modified flux (slow cells:
- * the rest balance is that of the means), one that positivity put back to
- * first order, and one next to a dry cell (towards a dry cell the wet cell's
- * mean, so the tip of a front is not reconstructed to zero). */
+ * edge values, except at an interface between two slow cells (the modified
+ * flux of a pile at rest: its rest balance is that of the means), one that
+ * positivity put back to first order, and one next to a dry cell (towards a
+ * dry cell the wet cell's mean, so the tip of a front is not reconstructed
+ * to zero).  An interface with the modified flux between a slow and a
+ * moving cell takes the reconstructed states. */
 static void interface_states(const gf_sh1d *s, const kinetic *k, size_t f, double *hl, double *ul, double *hr,
                              double *ur)
 {
