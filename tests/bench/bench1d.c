@@ -18,10 +18,11 @@
  *            two errors;
  *   cap:     spreading parabolic cap (h0 = 1, l0 = 2, beta = 1) on [-15, 15],
  *            t = 5: the same two errors.
- * The three dry-front problems also run with the start-up refinement
- * (startup_levels = 3, every scheme, names with "+s3"; and 5, RKDG P1 and
- * P2, "+s5"); its finer grids' CPU time is included, their steps are not
- * counted as cell updates.
+ * The kinetic Schemes 1 and 3 also run with kinetic_order 2 ("o2").  The
+ * three dry-front problems also run with the start-up refinement
+ * (startup_levels = 3: kinetic 3 at orders 1 and 2 and RKDG P0-P2, "+s3";
+ * 5: RKDG P1, P2 and kinetic 3 order 2, "+s5"); its finer grids' CPU time is
+ * included, their steps are not counted as cell updates.
  * Prints: problem, scheme, N, L1 error, CPU seconds, cell updates per second
  * (cells x steps / CPU s; DG counts a three-stage step once), front error in
  * cells (nan without a dry front).  CSV on stdout.
