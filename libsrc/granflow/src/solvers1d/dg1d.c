@@ -277,21 +277,12 @@ static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
     }
 }
 
-static inline double minmod3(double a, double b, double c)
-{
-    if (a > 0.0 && b > 0.0 && c > 0.0)
-        return fmin(a, fmin(b, c));
-    if (a < 0.0 && b < 0.0 && c < 0.0)
-        return fmax(a, fmax(b, c));
-    return 0.0;
-}
-
 /* TVB-modified minmod: the first argument unchanged when small (M dx^2) */
 static inline double mmt(const gf_sh1d *s, double a, double b, double c)
 {
     if (s->cfg.tvb_m > 0.0 && fabs(a) <= s->cfg.tvb_m * s->dx * s->dx)
         return a;
-    return minmod3(a, b, c);
+    return gf_sh1d_minmod3(a, b, c);
 }
 
 /* Hierarchical moment limiter (Krivodonova 2007): from the highest mode

@@ -173,11 +173,6 @@ static void update_beta(const gf_sh1d *s, kinetic *k)
     k->beta[n + 1] = k->beta[n];
 }
 
-static inline double minmod(double a, double b)
-{
-    return a * b <= 0.0 ? 0.0 : fabs(a) < fabs(b) ? a : b;
-}
-
 /* kinetic_order 2 (the higher-order method the kinetic paper leaves to
  * future work, section 6): slopes per cell (differences over one cell) of h
  * and of u = q/h, minmod-limited against both neighbours; u only from wet
@@ -187,14 +182,14 @@ static inline double minmod(double a, double b)
 static void cell_slopes(const gf_sh1d *s, const kinetic *k, size_t i, double *dh, double *du)
 {
     const double he = s->cfg.h_eps, *h = k->h;
-    *dh = minmod(h[i + 1] - h[i], h[i] - h[i - 1]);
+    *dh = gf_sh1d_minmod(h[i + 1] - h[i], h[i] - h[i - 1]);
     *du = 0.0;
     if (h[i] <= he)
         return;
     const double u = gf_sh1d_velocity(s, h[i], k->q[i]);
     const double dl = h[i - 1] > he ? u - gf_sh1d_velocity(s, h[i - 1], k->q[i - 1]) : 0.0;
     const double dr = h[i + 1] > he ? gf_sh1d_velocity(s, h[i + 1], k->q[i + 1]) - u : 0.0;
-    *du = h[i - 1] > he && h[i + 1] > he ? minmod(dl, dr) : 0.0;
+    *du = h[i - 1] > he && h[i + 1] > he ? gf_sh1d_minmod(dl, dr) : 0.0;
 }
 
 static void slopes(const gf_sh1d *s, kinetic *k)

@@ -4,6 +4,8 @@
 
 #include "granflow/sh1d.h"
 
+#include <math.h>
+
 struct gf_sh1d_type {
     const char *name;
     gf_status (*init)(gf_sh1d *s);                   /* allocate s->impl, check options */
@@ -56,6 +58,18 @@ double gf_sh1d_static_friction(const gf_sh1d *s, double h, double zeta);
 /* The 5-point Gauss–Legendre rule on [-1, 1] (weights sum to 2), from GSL's
  * glfixed table: initial projections and L1 differences. */
 gf_status gf_gauss_legendre5(double x[5], double w[5]);
+
+/* minmod: of the arguments the one nearest 0 where all have one sign, else
+ * 0 (RKDG's limiters: three; the kinetic order-2 slopes: two) */
+static inline double gf_sh1d_minmod3(double a, double b, double c)
+{
+    if (a > 0.0 && b > 0.0 && c > 0.0)
+        return fmin(a, fmin(b, c));
+    if (a < 0.0 && b < 0.0 && c < 0.0)
+        return fmax(a, fmax(b, c));
+    return 0.0;
+}
+static inline double gf_sh1d_minmod(double a, double b) { return gf_sh1d_minmod3(a, b, b); }
 
 /* Velocity q/h, 0 where h <= h_eps. */
 static inline double gf_sh1d_velocity(const gf_sh1d *s, double h, double q)
