@@ -175,8 +175,8 @@ static void update_beta(const gf_sh1d *s, kinetic *k)
 
 /* kinetic_order 2 (the higher-order method the kinetic paper leaves to
  * future work, section 6): slopes per cell (differences over one cell) of h
- * and of u = q/h, minmod-limited against both neighbours; u only from wet
- * neighbours (a dry neighbour has no velocity), 0 in a dry cell.  Ghosts:
+ * and of u = q/h, minmod-limited against both neighbours; u only where the
+ * cell and both neighbours are wet (a dry cell has no velocity), else 0.  Ghosts:
  * periodic copies; a wall's mirror image (h even, u odd: dh_0 = -dh_1,
  * du_0 = du_1); zero-gradient boundaries constant (no slope). */
 static void cell_slopes(const gf_sh1d *s, const kinetic *k, size_t i, double *dh, double *du)
@@ -184,12 +184,11 @@ static void cell_slopes(const gf_sh1d *s, const kinetic *k, size_t i, double *dh
     const double he = s->cfg.h_eps, *h = k->h;
     *dh = gf_sh1d_minmod(h[i + 1] - h[i], h[i] - h[i - 1]);
     *du = 0.0;
-    if (h[i] <= he)
+    if (h[i - 1] <= he || h[i] <= he || h[i + 1] <= he)
         return;
     const double u = gf_sh1d_velocity(s, h[i], k->q[i]);
-    const double dl = h[i - 1] > he ? u - gf_sh1d_velocity(s, h[i - 1], k->q[i - 1]) : 0.0;
-    const double dr = h[i + 1] > he ? gf_sh1d_velocity(s, h[i + 1], k->q[i + 1]) - u : 0.0;
-    *du = h[i - 1] > he && h[i + 1] > he ? gf_sh1d_minmod(dl, dr) : 0.0;
+    const double ul = gf_sh1d_velocity(s, h[i - 1], k->q[i - 1]), ur = gf_sh1d_velocity(s, h[i + 1], k->q[i + 1]);
+    *du = gf_sh1d_minmod(u - ul, ur - u);
 }
 
 static void slopes(const gf_sh1d *s, kinetic *k)
@@ -222,8 +221,8 @@ static void interface_states(const gf_sh1d *s, const kinetic *k, size_t f, doubl
 {
     *hl = k->h[f], *hr = k->h[f + 1];
     *ul = gf_sh1d_velocity(s, *hl, k->q[f]), *ur = gf_sh1d_velocity(s, *hr, k->q[f + 1]);
-    if (s->cfg.kinetic_order != 2 || (k->mod[f] && k->slow[f] && k->slow[f + 1]) || k->first[f] || *hl <= s->cfg.h_eps ||
-        *hr <= s->cfg.h_eps)
+    if (s->cfg.kinetic_order != 2 || (k->mod[f] && k->slow[f] && k->slow[f + 1]) || k->first[f] ||
+        *hl <= s->cfg.h_eps || *hr <= s->cfg.h_eps)
         return;
     *hl += 0.5 * k->dh[f], *ul += 0.5 * k->du[f];
     *hr -= 0.5 * k->dh[f + 1], *ur -= 0.5 * k->du[f + 1];
