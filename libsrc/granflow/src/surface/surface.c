@@ -824,7 +824,7 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
     const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
     const unsigned st = s->stamp;
     /* the sums of accumulate: L fh, fp PO, fpn PN, L fm, L fmn */
-    double *ea = s->eacc + EA * e, fm[3];
+    double *ea = s->eacc + EA * e;
     double hl, ul[3], F[3], fpress, un_b = 0.0, ut_b = 0.0;
     if (kind == GF_EDGE_INTERNAL) {
         if (s->sedge[e]) {
@@ -911,10 +911,8 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
             ea[3 + k] = L * (F[0] * (un_b * nu[k] + ut_b * t[k]));
         return;
     }
-    for (int k = 0; k < 3; ++k) {
-        fm[k] = F[1] * nu[k] + F[2] * t[k];
-        ea[3 + k] = ea[6 + k] = L * fm[k];
-    }
+    for (int k = 0; k < 3; ++k) /* the momentum flux F[1] nu + F[2] t, alike on both sides */
+        ea[3 + k] = ea[6 + k] = L * (F[1] * nu[k] + F[2] * t[k]);
 }
 
 /* The edge fluxes summed per owned active face, over its edges in the
