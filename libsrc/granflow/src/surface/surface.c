@@ -26,6 +26,14 @@
 #define EG_LW 0
 #define EG_RO 3
 #define EG_RN 6
+/* Per face slot (gf_surface.fe[j], the face's edges in mesh order), SG
+ * doubles in gf_surface.fs_geo, so that the per-face passes read their
+ * geometry in one run instead of from each edge's block: [0..2] w L nu_e
+ * (the Green–Gauss weight, w = +1 for the edge's owner, -1 for its
+ * neighbour), [3..5] edge centre minus face centre; beside it
+ * gf_surface.fs_other (the face across, -1 on a boundary edge) and
+ * gf_surface.fs_nb (1 when the face is the edge's neighbour). */
+#define SG 6
 /* Per-edge sums for accumulate (gf_surface.eacc), written by edge_flux: the
  * products it adds, in the order it adds them: L fh, fp L nu.n_o, fpn L
  * nu.n_n, L fm[3] (owner), L fmn[3] (neighbour) */
@@ -66,6 +74,9 @@ struct gf_surface {
     /* face -> edges (all nt faces; a ghost has its one processor edge) */
     size_t *fe_start;
     int *fe;
+    int *fs_other;          /* per slot: the face across the edge, -1 on a boundary */
+    unsigned char *fs_nb;   /* per slot: the face is the edge's neighbour */
+    double *fs_geo;         /* SG per slot */
     /* per-edge geometry: frame nu, t, nu_L (owner plane), nu_R (neighbour
      * plane) (EF per edge), and the kernels' precomputed vectors (EG) */
     double *frame, *geo;
@@ -73,8 +84,11 @@ struct gf_surface {
     double *h, *mom, *h1, *m1, *h2, *m2;
     double *a;    /* normal acceleration p_b/(rho h) per face (nt) */
     double *u;    /* velocity of the stage state per face (3 nt; 0 where h <= h_dry) */
+    double *cw;   /* wave speed sqrt(a h) of the state per face, for the step bound (nt; 0 outside the active set) */
     double *pb;   /* n_faces */
-    double *grad; /* 3 NV per face (nt) */
+    double *grad; /* 3 NV per face (nt): written for the faces next to a ghost (the halo exchange's);
+                   * the others' stay 0 (edge_side reads s->es for them) */
+    unsigned char *pface; /* per owned face: it has a processor edge (its gradient goes to a ghost) */
     /* per edge and side (owner 0, neighbour 1): h and u reconstructed at the
      * edge centre by gradients() for owned active faces (8 per edge), so
      * that edge_flux reads 64 bytes per edge instead of two gradients */
@@ -86,7 +100,8 @@ struct gf_surface {
      * fluxes fm, fmn and of the pressure part along nu fp, fpn as the owner
      * and the neighbour feel them (they differ on static edges only) */
     double *fh, *eacc;
-    double *spd; /* per edge: HLL speeds s_L, s_R of the step bound */
+    double *spd; /* per edge: L max(0, s_R), L max(0, -s_L): the owner's and the neighbour's outgoing
+                  * rates of the step bound (HLL speeds s_L, s_R) */
     double *ahyd;     /* hydrostatic normal acceleration max(0, -g.n) per face (nt) */
     unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt) */
     unsigned char *slow; /* |u| < dt |g| this stage (nt) */
@@ -155,7 +170,8 @@ void gf_surface_free(gf_surface *s)
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->es, s->acc_h,  s->acc_m,
                     s->acc_pn,   s->fh,     s->eacc, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
-                    s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl};
+                    s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
+                    s->fs_other, s->fs_nb, s->fs_geo, s->cw, s->pface};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
         free(bufs[i]);
     free(s);
@@ -254,6 +270,14 @@ static gf_status build_frames(gf_surface *s)
         fr[EF_PO] = L * dot3(nu, no);
         fr[EF_PN] = L * dot3(nu, nn);
     }
+    for (size_t j = 0; j < s->fe_start[s->nt]; ++j) {
+        const double *ge = s->geo + EG * s->fe[j], w = s->fs_nb[j] ? -1.0 : 1.0;
+        double *sg = s->fs_geo + SG * j;
+        for (int k = 0; k < 3; ++k) {
+            sg[k] = w * ge[EG_LW + k];
+            sg[3 + k] = ge[(s->fs_nb[j] ? EG_RN : EG_RO) + k];
+        }
+    }
     return GF_SUCCESS;
 }
 
@@ -310,11 +334,12 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->act_e = malloc((ne + 1) * sizeof *s->act_e);
     s->prev_f = malloc(nt * sizeof *s->prev_f);
     s->a_save = malloc(nt * sizeof *s->a_save);
+    s->cw = calloc(nt, sizeof *s->cw);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->geo || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
         !s->a || !s->pb || !s->grad || !s->es || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->eacc || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
-        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
+        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl || !s->cw) {
         gf_surface_free(s);
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory for %zu faces", nt);
     }
@@ -346,6 +371,23 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
             s->fe[s->fe_start[n] + fill[n]++] = (int)e;
     }
     free(fill);
+    const size_t ns = s->fe_start[nt];
+    s->fs_other = malloc((ns + 1) * sizeof *s->fs_other);
+    s->fs_nb = malloc(ns + 1);
+    s->fs_geo = malloc((SG * ns + 1) * sizeof *s->fs_geo);
+    s->pface = calloc(nf + 1, 1);
+    if (!s->fs_other || !s->fs_nb || !s->fs_geo || !s->pface) {
+        gf_surface_free(s);
+        return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
+    }
+    for (size_t f = 0; f < nt; ++f)
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j], isown = mesh->owner[e] == (int)f;
+            s->fs_other[j] = isown ? mesh->neighbour[e] : mesh->owner[e];
+            s->fs_nb[j] = (unsigned char)!isown;
+            if (f < nf && s->fs_other[j] >= (int)nf)
+                s->pface[f] = 1;
+        }
     for (size_t f = 0; f < nt; ++f) {
         const double gn = -dot3(cfg->g, mesh->normal + 3 * f);
         s->a[f] = s->ahyd[f] = gn > 0.0 ? gn : 0.0;
@@ -576,6 +618,7 @@ static gf_status build_active(gf_surface *s)
         memcpy(s->m2 + 3 * f, s->mom + 3 * f, 3 * sizeof *s->m2);
         memset(s->grad + 3 * NV * f, 0, 3 * NV * sizeof *s->grad);
         memset(s->u + 3 * f, 0, 3 * sizeof *s->u);
+        s->cw[f] = 0.0;
     }
     memcpy(s->prev_f, s->act_f, s->n_act_f * sizeof *s->prev_f);
     s->n_prev_f = s->n_act_f;
@@ -605,7 +648,12 @@ static gf_status build_active(gf_surface *s)
 typedef double v4d __attribute__((vector_size(32)));
 typedef long long v4i __attribute__((vector_size(32)));
 static inline v4d vsplat(double x) { return (v4d){x, x, x, x}; }
+/* lane-wise m ? a : b (every lane of m all ones or all zeros) */
+#ifdef __AVX__
+static inline v4d vsel(v4i m, v4d a, v4d b) { return __builtin_ia32_blendvpd256(b, a, (v4d)m); }
+#else
 static inline v4d vsel(v4i m, v4d a, v4d b) { return (v4d)(((v4i)a & m) | ((v4i)b & ~m)); }
+#endif
 static inline v4d vmin(v4d a, v4d b) { return vsel(a < b, a, b); } /* gmin per lane */
 static inline v4d vmax(v4d a, v4d b) { return vsel(a > b, a, b); } /* gmax per lane */
 static inline int vany(v4i m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
@@ -618,16 +666,14 @@ static void gradients(gf_surface *s, const double *H)
 {
     const gf_surface_mesh *m = &s->m;
     const double hd = s->c.h_dry;
-    const int *own = m->owner, *nbr = m->neighbour;
+    const int *oth = s->fs_other;
     const v4i all = {-1, -1, -1, -1}, lane0 = {-1, 0, 0, 0};
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
         if (i + PF_DIST / 2 < s->n_act_owned) {
             const int fp = s->act_f[i + PF_DIST / 2];
-            for (size_t j = s->fe_start[fp]; j < s->fe_start[fp + 1]; ++j) {
-                prefetch_block(s->geo + EG * s->fe[j], EG, 0);
+            for (size_t j = s->fe_start[fp]; j < s->fe_start[fp + 1]; ++j)
                 prefetch_block(s->es + 8 * s->fe[j], 8, 1);
-            }
         }
         const double h0 = H[f], *u0 = s->u + 3 * f;
         const int wet = h0 > hd;
@@ -636,10 +682,10 @@ static void gradients(gf_surface *s, const double *H)
          * variables (lane v: grad h, grad u_x, grad u_y, grad u_z) */
         v4d Gx = vsplat(0.0), Gy = Gx, Gz = Gx, qmn = q0, qmx = q0;
         const size_t j0 = s->fe_start[f], j1 = s->fe_start[f + 1];
+        const double *sg0 = s->fs_geo + SG * j0;
         for (size_t j = j0; j < j1; ++j) {
-            const int e = s->fe[j];
-            const int other = own[e] == f ? nbr[e] : own[e];
-            const double *lw = s->geo + EG * e + EG_LW, w = own[e] == f ? 1.0 : -1.0;
+            const int other = oth[j];
+            const double *lw = sg0 + SG * (j - j0); /* w L nu_e */
             v4d qe = q0;
             if (other >= 0) {
                 const double hn = H[other], *un = s->u + 3 * other;
@@ -649,9 +695,9 @@ static void gradients(gf_surface *s, const double *H)
                 qmn = vsel(use, vmin(qmn, qn), qmn);
                 qmx = vsel(use, vmax(qmx, qn), qmx);
             }
-            Gx += qe * vsplat(w * lw[0]);
-            Gy += qe * vsplat(w * lw[1]);
-            Gz += qe * vsplat(w * lw[2]);
+            Gx += qe * vsplat(lw[0]);
+            Gy += qe * vsplat(lw[1]);
+            Gz += qe * vsplat(lw[2]);
         }
         /* tangential part, per unit area (no velocity slope on a face without velocity) */
         const double rA = 1.0 / m->area[f], *nf = m->normal + 3 * f;
@@ -674,9 +720,8 @@ static void gradients(gf_surface *s, const double *H)
         v4d alpha = vsplat(1.0);
         const v4d rp = qmx - q0, rm = qmn - q0;
         for (size_t j = j0; j < j1; ++j) {
-            const int e = s->fe[j];
-            const int isown = own[e] == f, other = isown ? nbr[e] : own[e];
-            const double *r = s->geo + EG * e + (isown ? EG_RO : EG_RN);
+            const int other = oth[j];
+            const double *r = sg0 + SG * (j - j0) + 3; /* edge centre - face centre */
             const v4i lanes = (other >= 0 && H[other] <= hd) ? lane0 : all;
             const v4d d = Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2]);
             const v4d ad = alpha * d, zero = vsplat(0.0);
@@ -688,19 +733,20 @@ static void gradients(gf_surface *s, const double *H)
         }
         const v4d c = vmax(vsplat(0.0), alpha);
         Gx *= c, Gy *= c, Gz *= c;
-        double *Gf = s->grad + 3 * NV * f;
-        for (int v = 0; v < NV; ++v) {
-            Gf[3 * v] = Gx[v];
-            Gf[3 * v + 1] = Gy[v];
-            Gf[3 * v + 2] = Gz[v];
+        if (s->pface[f]) { /* for the halo exchange */
+            double *Gf = s->grad + 3 * NV * f;
+            for (int v = 0; v < NV; ++v) {
+                Gf[3 * v] = Gx[v];
+                Gf[3 * v + 1] = Gy[v];
+                Gf[3 * v + 2] = Gz[v];
+            }
         }
         /* the reconstructed states at the face's edges (side_state, rec 1):
          * h (not below 0: round-off of the limiter), and u where wet */
         const v4i rec = wet ? all : lane0;
         for (size_t j = j0; j < j1; ++j) {
-            const int e = s->fe[j], isown = own[e] == f;
-            const double *r = s->geo + EG * e + (isown ? EG_RO : EG_RN);
-            double *q = s->es + 8 * e + (isown ? 0 : 4);
+            const double *r = sg0 + SG * (j - j0) + 3;
+            double *q = s->es + 8 * s->fe[j] + 4 * s->fs_nb[j];
             const v4d qr = vsel(rec, q0 + (Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2])), q0);
             q[0] = qr[0] < 0.0 ? 0.0 : qr[0];
             q[1] = qr[1], q[2] = qr[2], q[3] = qr[3];
@@ -816,7 +862,7 @@ static inline double hydrostatic_pressure(const gf_surface *s, const double *H, 
 
 /* Flux of edge e from the stage state (thickness H, velocities s->u): fh, fm (3D), fp (pressure
  * along nu); per unit length. */
-static void edge_flux(gf_surface *s, const double *H, int e, int order2)
+static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const double *H, int e, int order2)
 {
     const gf_surface_mesh *m = &s->m;
     const double *fr = s->frame + EF * e, *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
@@ -913,6 +959,13 @@ static void edge_flux(gf_surface *s, const double *H, int e, int order2)
     }
     for (int k = 0; k < 3; ++k) /* the momentum flux F[1] nu + F[2] t, alike on both sides */
         ea[3 + k] = ea[6 + k] = L * (F[1] * nu[k] + F[2] * t[k]);
+}
+
+/* edge_flux out of line, for the positivity fallback's recomputations (the
+ * pass over the active edges has it inlined) */
+static __attribute__((noinline)) void edge_flux_again(gf_surface *s, const double *H, int e, int order2)
+{
+    edge_flux(s, H, e, order2);
 }
 
 /* The edge fluxes summed per owned active face, over its edges in the
@@ -1033,7 +1086,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
                     if (!s->first[e]) {
                         s->first[e] = 1;
                         s->st.first_order_edges++;
-                        edge_flux(s, H, e, order2);
+                        edge_flux_again(s, H, e, order2);
                     }
                 }
                 bad = 1;
@@ -1064,7 +1117,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
                 if (n >= 0 && (size_t)n >= m->n_faces && badf[n] > 0.0 && !s->first[e]) {
                     s->first[e] = 1;
                     s->st.first_order_edges++;
-                    edge_flux(s, H, e, order2);
+                    edge_flux_again(s, H, e, order2);
                 }
             }
         }
@@ -1159,9 +1212,12 @@ static gf_status step_once(gf_surface *s, double dt)
             s->a[s->act_f[i]] = s->a_save[s->act_f[i]];
         return st;
     }
+    int wet_changed = 0; /* a face became wet or dry */
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
-        s->h[f] = 0.5 * (s->h[f] + s->h2[f]);
+        const double h0 = s->h[f], h1 = 0.5 * (h0 + s->h2[f]);
+        wet_changed |= (h0 > 0.0) != (h1 > 0.0);
+        s->h[f] = h1;
         for (int k = 0; k < 3; ++k)
             s->mom[3 * f + k] = 0.5 * (s->mom[3 * f + k] + s->m2[3 * f + k]);
     }
@@ -1169,7 +1225,16 @@ static gf_status step_once(gf_surface *s, double dt)
         const int e = s->act_e[i];
         s->edge_vol[e] += s->edge_vol_step[e];
     }
-    s->active_fresh = 0; /* h changed */
+    /* The active set is a function of which faces are wet (h > 0): while
+     * that set stays the same (on every rank), so does the active set, and
+     * it is kept (build_active would rebuild it in the same order). */
+    if (s->m.n_ghosts > 0 || s->minfn) {
+        double v = wet_changed ? -1.0 : 0.0;
+        if ((st = global_min(s, &v, 1)))
+            return st;
+        wet_changed = v < 0.0;
+    }
+    s->active_fresh = !wet_changed;
     s->st.steps++;
     s->st.face_updates += s->n_act_owned;
     s->st.active_faces = s->n_act_owned;
@@ -1529,37 +1594,41 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
      * the first-order states); Co = dt sum_e L_e s_out / (2 A) <= 1/2 keeps
      * h >= 0.  A wall's mirror state and an outflow's extrapolated state give
      * the same bounds with u_R = -u_L or u_R = u_L. */
+    /* the state's velocities and wave speeds once per face (a face outside
+     * the active set is dry: u = 0, c = 0) */
+    for (size_t i = 0; i < s->n_act_f; ++i) {
+        const int f = s->act_f[i];
+        velocity(s, s->h, s->mom, f, s->u + 3 * f);
+        s->cw[f] = sqrt(s->a[f] * s->h[f]);
+    }
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i];
         if (i + PF_DIST < s->n_act_e)
             prefetch_block(s->frame + EF * s->act_e[i + PF_DIST], EF, 0);
         const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
         const double *fr = s->frame + EF * e;
-        double uo[3];
-        velocity(s, s->h, s->mom, o, uo);
-        const double hl = s->h[o], ul = dot3(uo, fr + 6), cl = sqrt(s->a[o] * hl);
+        const double hl = s->h[o], ul = dot3(s->u + 3 * o, fr + 6), cl = s->cw[o];
         double hr = hl, ur = -ul, cr = cl;
         if (kind == GF_EDGE_INTERNAL) {
-            double un[3];
-            velocity(s, s->h, s->mom, n, un);
-            hr = s->h[n], ur = dot3(un, fr + 9), cr = sqrt(s->a[n] * hr);
+            hr = s->h[n], ur = dot3(s->u + 3 * n, fr + 9), cr = s->cw[n];
         } else if (kind == GF_EDGE_OUTFLOW) {
             ur = ul;
         } else if (kind == GF_EDGE_INFLOW) {
             const double *b = s->inflow + 4 * e;
             hr = b[0], ur = dot3(b + 1, fr + 6), cr = sqrt(s->a[o] * hr);
         }
-        hll_speeds(hl, ul, cl, hr, ur, cr, s->spd + 2 * e, s->spd + 2 * e + 1);
+        double sl, sr;
+        hll_speeds(hl, ul, cl, hr, ur, cr, &sl, &sr);
+        s->spd[2 * e] = m->length[e] * gmax(0.0, sr);
+        s->spd[2 * e + 1] = m->length[e] * gmax(0.0, -sl);
     }
     /* per face, over its edges in mesh order (as accumulate) */
     double best = HUGE_VAL;
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
         double out = 0.0;
-        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
-            const int e = s->fe[j];
-            out += m->length[e] * (m->owner[e] == f ? gmax(0.0, s->spd[2 * e + 1]) : gmax(0.0, -s->spd[2 * e]));
-        }
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j)
+            out += s->spd[2 * s->fe[j] + s->fs_nb[j]];
         if (out > 0.0)
             best = gmin(best, 2.0 * s->c.courant * m->area[f] / out);
     }
