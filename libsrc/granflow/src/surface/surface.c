@@ -18,7 +18,7 @@
  *    of ghosts and inactive faces): [0..2] length * edge normal (the
  *    Green–Gauss weight of the owner), [3..5], [6..8] edge centre minus
  *    owner / neighbour centre. */
-#define EF 15
+#define EF 16 /* 15 used; two cache lines */
 #define EF_L 12
 #define EF_PO 13
 #define EF_PN 14
@@ -34,10 +34,12 @@
  * gf_surface.fs_other (the face across, -1 on a boundary edge) and
  * gf_surface.fs_nb (1 when the face is the edge's neighbour). */
 #define SG 6
-/* Per-edge sums for accumulate (gf_surface.eacc), written by edge_flux: the
- * products it adds, in the order it adds them: L fh, fp L nu.n_o, fpn L
- * nu.n_n, L fm[3] (owner), L fmn[3] (neighbour) */
-#define EA 9
+/* Per-edge sums for accumulate (gf_surface.eacc, EA per edge, one cache
+ * line), written by edge_flux: the products it adds, in the order it adds
+ * them: [0] L fh, [1] fp L nu.n_o, [2] fpn L nu.n_n, [3..5] L fm (the
+ * owner's momentum flux, and the neighbour's unless [6] is 1), [6] 1 on a
+ * static edge, whose neighbour feels L fmn (gf_surface.efmn), [7] unused */
+#define EA 8
 /* Software prefetch distance (edges, or faces) of the passes over the
  * active set: their edge blocks are read through index lists, in an order
  * (two or more interleaved runs of edge numbers) that the hardware
@@ -99,7 +101,7 @@ struct gf_surface {
      * and the products accumulate sums (EA per edge): of fh, of the momentum
      * fluxes fm, fmn and of the pressure part along nu fp, fpn as the owner
      * and the neighbour feel them (they differ on static edges only) */
-    double *fh, *eacc;
+    double *fh, *eacc, *efmn; /* efmn: 3 per edge, the neighbour's L fmn of a static edge */
     double *spd; /* per edge: L max(0, s_R), L max(0, -s_L): the owner's and the neighbour's outgoing
                   * rates of the step bound (HLL speeds s_L, s_R) */
     double *ahyd;     /* hydrostatic normal acceleration max(0, -g.n) per face (nt) */
@@ -168,7 +170,7 @@ void gf_surface_free(gf_surface *s)
     startup_free(s);
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->geo,      s->h,    s->mom,    s->h1,     s->m1,
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->es, s->acc_h,  s->acc_m,
-                    s->acc_pn,   s->fh,     s->eacc, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
+                    s->acc_pn,   s->fh,     s->eacc, s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
                     s->fs_other, s->fs_nb, s->fs_geo, s->cw, s->pface};
@@ -281,6 +283,17 @@ static gf_status build_frames(gf_surface *s)
     return GF_SUCCESS;
 }
 
+/* n doubles, zeroed, on 64-byte boundaries: an edge's 8-double block of
+ * gf_surface.es is then one cache line, not two */
+static double *calloc_lines(size_t n)
+{
+    const size_t bytes = (n * sizeof(double) + 63) / 64 * 64;
+    double *p = aligned_alloc(64, bytes);
+    if (p)
+        memset(p, 0, bytes);
+    return p;
+}
+
 gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config *cfg, gf_surface **out)
 {
     if (!mesh || !cfg || !out)
@@ -301,7 +314,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     const size_t nt = s->nt = mesh->n_faces + mesh->n_ghosts, ne = mesh->n_edges, nf = mesh->n_faces;
     s->fe_start = calloc(nt + 1, sizeof *s->fe_start);
     s->fe = malloc((2 * ne + 1) * sizeof *s->fe);
-    s->frame = malloc((EF * ne + 1) * sizeof *s->frame);
+    s->frame = calloc_lines(EF * ne + 1);
     s->geo = malloc((EG * ne + 1) * sizeof *s->geo);
     double **d3[] = {&s->mom, &s->m1, &s->m2, &s->u};
     for (int i = 0; i < 4; ++i)
@@ -311,12 +324,13 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
         *d1[i] = calloc(nt, sizeof(double));
     s->pb = calloc(nf, sizeof *s->pb);
     s->grad = calloc(3 * NV * nt, sizeof *s->grad);
-    s->es = calloc(8 * ne + 1, sizeof *s->es);
+    s->es = calloc_lines(8 * ne + 1);
     s->acc_h = calloc(nf, sizeof *s->acc_h);
     s->acc_m = calloc(3 * nf, sizeof *s->acc_m);
     s->acc_pn = calloc(nf, sizeof *s->acc_pn);
     s->fh = calloc(ne + 1, sizeof *s->fh);
-    s->eacc = calloc(EA * ne + 1, sizeof *s->eacc);
+    s->eacc = calloc_lines(EA * ne + 1);
+    s->efmn = calloc(3 * ne + 1, sizeof *s->efmn);
     s->spd = calloc(2 * ne + 1, sizeof *s->spd);
     s->ahyd = calloc(nt, sizeof *s->ahyd);
     s->stat = calloc(nt, 1);
@@ -337,7 +351,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->cw = calloc(nt, sizeof *s->cw);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->geo || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
-        !s->a || !s->pb || !s->grad || !s->es || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->eacc || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
+        !s->a || !s->pb || !s->grad || !s->es || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->eacc || !s->efmn || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl || !s->cw) {
         gf_surface_free(s);
@@ -913,8 +927,9 @@ static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const
             for (int k = 0; k < 3; ++k) {
                 const double adv = fh * (unu * nu[k] + ut * t[k]);
                 ea[3 + k] = L * (adv + qo * nu[k]);
-                ea[6 + k] = L * (adv + qn * nu[k]);
+                s->efmn[3 * e + k] = L * (adv + qn * nu[k]);
             }
+            ea[6] = 1.0;
             return;
         }
         double hr, ur[3];
@@ -946,6 +961,7 @@ static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const
         }
     }
     s->fh[e] = F[0];
+    ea[6] = 0.0;
     ea[0] = L * F[0];
     ea[1] = fpress * fr[EF_PO];
     ea[2] = fpress * fr[EF_PN];
@@ -958,7 +974,7 @@ static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const
         return;
     }
     for (int k = 0; k < 3; ++k) /* the momentum flux F[1] nu + F[2] t, alike on both sides */
-        ea[3 + k] = ea[6 + k] = L * (F[1] * nu[k] + F[2] * t[k]);
+        ea[3 + k] = L * (F[1] * nu[k] + F[2] * t[k]);
 }
 
 /* edge_flux out of line, for the positivity fallback's recomputations (the
@@ -996,8 +1012,9 @@ static void accumulate(gf_surface *s)
             } else {
                 ah -= ea[0];
                 ap -= ea[2];
+                const double *fn = ea[6] != 0.0 ? s->efmn + 3 * e : ea + 3;
                 for (int k = 0; k < 3; ++k)
-                    am[k] -= ea[6 + k];
+                    am[k] -= fn[k];
             }
         }
         s->acc_h[f] = ah, s->acc_pn[f] = ap;
