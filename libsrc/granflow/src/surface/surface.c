@@ -10,15 +10,20 @@
 /* Per-edge geometry, built once by build_frames, in two blocks so that each
  * pass reads only what it needs (a face's edges are not adjacent in memory;
  * on meshes larger than the cache the passes are bound by these reads):
- *  - gf_surface.frame, EF doubles per edge (edge fluxes, step bound): the
- *    frame nu, t, nu_L, nu_R, [12] the length, [13], [14] length * nu .
- *    n_owner, length * nu . n_neighbour (the normal part of the edge
- *    pressure in eq. 33);
+ *  - gf_surface.frame, EF doubles per edge on two cache lines (edge fluxes,
+ *    step bound): the frame's nu_L, nu_R (the first line: all the step
+ *    bound reads), nu, t, [12] the length, [13], [14] length * nu . n_owner,
+ *    length * nu . n_neighbour (the normal part of the edge pressure in
+ *    eq. 33);
  *  - gf_surface.geo, EG doubles per edge (gradients and limiter; edge fluxes
  *    of ghosts and inactive faces): [0..2] length * edge normal (the
  *    Green–Gauss weight of the owner), [3..5], [6..8] edge centre minus
  *    owner / neighbour centre. */
-#define EF 16 /* 15 used; two cache lines */
+#define EF 16 /* 15 used */
+#define EF_NUL 0
+#define EF_NUR 3
+#define EF_NU 6
+#define EF_T 9
 #define EF_L 12
 #define EF_PO 13
 #define EF_PN 14
@@ -86,7 +91,6 @@ struct gf_surface {
     double *h, *mom, *h1, *m1, *h2, *m2;
     double *a;    /* normal acceleration p_b/(rho h) per face (nt) */
     double *u;    /* velocity of the stage state per face (3 nt; 0 where h <= h_dry) */
-    double *cw;   /* wave speed sqrt(a h) of the state per face, for the step bound (nt; 0 outside the active set) */
     double *pb;   /* n_faces */
     double *grad; /* 3 NV per face (nt): written for the faces next to a ghost (the halo exchange's);
                    * the others' stay 0 (edge_side reads s->es for them) */
@@ -173,7 +177,7 @@ void gf_surface_free(gf_surface *s)
                     s->acc_pn,   s->fh,     s->eacc, s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
-                    s->fs_other, s->fs_nb, s->fs_geo, s->cw, s->pface};
+                    s->fs_other, s->fs_nb, s->fs_geo, s->pface};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
         free(bufs[i]);
     free(s);
@@ -247,7 +251,7 @@ static gf_status build_frames(gf_surface *s)
         const double *nn = m->neighbour[e] >= 0 ? m->normal + 3 * m->neighbour[e] : no;
         for (int k = 0; k < 3; ++k)
             ne[k] = no[k] + nn[k];
-        double *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
+        double *nu = fr + EF_NU, *t = fr + EF_T, *nul = fr + EF_NUL, *nur = fr + EF_NUR;
         memcpy(nu, m->edge_normal + 3 * e, 3 * sizeof *nu);
         if (normalise3(ne))
             return gf_fail(GF_EDOM, "surface mesh: faces across edge %zu have opposite normals", e);
@@ -348,12 +352,11 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->act_e = malloc((ne + 1) * sizeof *s->act_e);
     s->prev_f = malloc(nt * sizeof *s->prev_f);
     s->a_save = malloc(nt * sizeof *s->a_save);
-    s->cw = calloc(nt, sizeof *s->cw);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->geo || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
         !s->a || !s->pb || !s->grad || !s->es || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->eacc || !s->efmn || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
-        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl || !s->cw) {
+        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory for %zu faces", nt);
     }
@@ -632,7 +635,6 @@ static gf_status build_active(gf_surface *s)
         memcpy(s->m2 + 3 * f, s->mom + 3 * f, 3 * sizeof *s->m2);
         memset(s->grad + 3 * NV * f, 0, 3 * NV * sizeof *s->grad);
         memset(s->u + 3 * f, 0, 3 * sizeof *s->u);
-        s->cw[f] = 0.0;
     }
     memcpy(s->prev_f, s->act_f, s->n_act_f * sizeof *s->prev_f);
     s->n_prev_f = s->n_act_f;
@@ -879,7 +881,7 @@ static inline double hydrostatic_pressure(const gf_surface *s, const double *H, 
 static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const double *H, int e, int order2)
 {
     const gf_surface_mesh *m = &s->m;
-    const double *fr = s->frame + EF * e, *nu = fr, *t = fr + 3, *nul = fr + 6, *nur = fr + 9;
+    const double *fr = s->frame + EF * e, *nu = fr + EF_NU, *t = fr + EF_T, *nul = fr + EF_NUL, *nur = fr + EF_NUR;
     const double *ge = s->geo + EG * e, L = fr[EF_L]; /* ge: read by side_state only */
     const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
     const unsigned st = s->stamp;
@@ -1199,9 +1201,12 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     return GF_SUCCESS;
 }
 
+/* The stage output's ghost entries (the owned active faces' are all written
+ * by the stage; the faces outside the active set hold the state,
+ * build_active) */
 static void copy_active(gf_surface *s, const double *h, const double *m, double *ho, double *mo)
 {
-    for (size_t i = 0; i < s->n_act_f; ++i) {
+    for (size_t i = s->n_act_owned; i < s->n_act_f; ++i) {
         const int f = s->act_f[i];
         ho[f] = h[f];
         mo[3 * f] = m[3 * f], mo[3 * f + 1] = m[3 * f + 1], mo[3 * f + 2] = m[3 * f + 2];
@@ -1611,28 +1616,25 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
      * the first-order states); Co = dt sum_e L_e s_out / (2 A) <= 1/2 keeps
      * h >= 0.  A wall's mirror state and an outflow's extrapolated state give
      * the same bounds with u_R = -u_L or u_R = u_L. */
-    /* the state's velocities and wave speeds once per face (a face outside
-     * the active set is dry: u = 0, c = 0) */
-    for (size_t i = 0; i < s->n_act_f; ++i) {
-        const int f = s->act_f[i];
-        velocity(s, s->h, s->mom, f, s->u + 3 * f);
-        s->cw[f] = sqrt(s->a[f] * s->h[f]);
-    }
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i];
         if (i + PF_DIST < s->n_act_e)
-            prefetch_block(s->frame + EF * s->act_e[i + PF_DIST], EF, 0);
+            prefetch_block(s->frame + EF * s->act_e[i + PF_DIST], 6, 0);
         const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
         const double *fr = s->frame + EF * e;
-        const double hl = s->h[o], ul = dot3(s->u + 3 * o, fr + 6), cl = s->cw[o];
+        double uo[3];
+        velocity(s, s->h, s->mom, o, uo);
+        const double hl = s->h[o], ul = dot3(uo, fr + EF_NUL), cl = sqrt(s->a[o] * hl);
         double hr = hl, ur = -ul, cr = cl;
         if (kind == GF_EDGE_INTERNAL) {
-            hr = s->h[n], ur = dot3(s->u + 3 * n, fr + 9), cr = s->cw[n];
+            double un[3];
+            velocity(s, s->h, s->mom, n, un);
+            hr = s->h[n], ur = dot3(un, fr + EF_NUR), cr = sqrt(s->a[n] * hr);
         } else if (kind == GF_EDGE_OUTFLOW) {
             ur = ul;
         } else if (kind == GF_EDGE_INFLOW) {
             const double *b = s->inflow + 4 * e;
-            hr = b[0], ur = dot3(b + 1, fr + 6), cr = sqrt(s->a[o] * hr);
+            hr = b[0], ur = dot3(b + 1, fr + EF_NUL), cr = sqrt(s->a[o] * hr);
         }
         double sl, sr;
         hll_speeds(hl, ul, cl, hr, ur, cr, &sl, &sr);
