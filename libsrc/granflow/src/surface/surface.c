@@ -666,13 +666,17 @@ typedef long long v4i __attribute__((vector_size(32)));
 static inline v4d vsplat(double x) { return (v4d){x, x, x, x}; }
 /* lane-wise m ? a : b (every lane of m all ones or all zeros) */
 #ifdef __AVX__
+/* (vminpd a, b is a < b ? a : b per lane, vmaxpd a > b ? a : b: gmin, gmax) */
 static inline v4d vsel(v4i m, v4d a, v4d b) { return __builtin_ia32_blendvpd256(b, a, (v4d)m); }
+static inline v4d vmin(v4d a, v4d b) { return __builtin_ia32_minpd256(a, b); }
+static inline v4d vmax(v4d a, v4d b) { return __builtin_ia32_maxpd256(a, b); }
+static inline int vany(v4i m) { return __builtin_ia32_movmskpd256((v4d)m) != 0; }
 #else
 static inline v4d vsel(v4i m, v4d a, v4d b) { return (v4d)(((v4i)a & m) | ((v4i)b & ~m)); }
-#endif
 static inline v4d vmin(v4d a, v4d b) { return vsel(a < b, a, b); } /* gmin per lane */
 static inline v4d vmax(v4d a, v4d b) { return vsel(a > b, a, b); } /* gmax per lane */
 static inline int vany(v4i m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+#endif
 
 /* Green–Gauss gradients of h and u over the face's edges (mean of the two
  * sides; velocity only from wet neighbours), projected onto the tangent
@@ -706,10 +710,15 @@ static void gradients(gf_surface *s, const double *H)
             if (other >= 0) {
                 const double hn = H[other], *un = s->u + 3 * other;
                 const v4d qn = {hn, un[0], un[1], un[2]};
-                const v4i use = wet && hn > hd ? all : lane0;
-                qe = vsel(use, vsplat(0.5) * (q0 + qn), q0);
-                qmn = vsel(use, vmin(qmn, qn), qmn);
-                qmx = vsel(use, vmax(qmx, qn), qmx);
+                if (wet && hn > hd) { /* all four lanes */
+                    qe = vsplat(0.5) * (q0 + qn);
+                    qmn = vmin(qmn, qn);
+                    qmx = vmax(qmx, qn);
+                } else { /* h only */
+                    qe = vsel(lane0, vsplat(0.5) * (q0 + qn), q0);
+                    qmn = vsel(lane0, vmin(qmn, qn), qmn);
+                    qmx = vsel(lane0, vmax(qmx, qn), qmx);
+                }
             }
             Gx += qe * vsplat(lw[0]);
             Gy += qe * vsplat(lw[1]);
