@@ -120,7 +120,8 @@ struct gf_surface {
     /* active set */
     unsigned *mark_f, *mark_e, *mark_g, stamp;
     int *act_f, *act_e, *ring, *prev_f;
-    size_t n_act_f, n_act_e, n_act_owned, n_prev_f;
+    int *act_b; /* the boundary edges among act_e (their volumes) */
+    size_t n_act_f, n_act_e, n_act_owned, n_prev_f, n_act_b;
     double *a_save;
     double *lvl; /* ring level for the parallel active set (nt) */
     int active_fresh; /* the active set matches the state (built since the last change) */
@@ -175,7 +176,7 @@ void gf_surface_free(gf_surface *s)
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->geo,      s->h,    s->mom,    s->h1,     s->m1,
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->es, s->acc_h,  s->acc_m,
                     s->acc_pn,   s->fh,     s->eacc, s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
-                    s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f,
+                    s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f, s->act_b,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
                     s->fs_other, s->fs_nb, s->fs_geo, s->pface};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
@@ -350,13 +351,14 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->act_f = malloc(nt * sizeof *s->act_f);
     s->ring = malloc(nt * sizeof *s->ring);
     s->act_e = malloc((ne + 1) * sizeof *s->act_e);
+    s->act_b = malloc((ne + 1) * sizeof *s->act_b);
     s->prev_f = malloc(nt * sizeof *s->prev_f);
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->geo || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
         !s->a || !s->pb || !s->grad || !s->es || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->eacc || !s->efmn || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
-        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->prev_f || !s->a_save || !s->lvl) {
+        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->act_b || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory for %zu faces", nt);
     }
@@ -649,6 +651,10 @@ static gf_status build_active(gf_surface *s)
             }
         }
     }
+    s->n_act_b = 0;
+    for (size_t i = 0; i < s->n_act_e; ++i)
+        if (s->m.neighbour[s->act_e[i]] < 0)
+            s->act_b[s->n_act_b++] = s->act_e[i];
     s->active_fresh = 1;
     return GF_SUCCESS;
 }
@@ -1151,10 +1157,9 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         }
     }
     /* boundary volumes of this stage */
-    for (size_t i = 0; i < s->n_act_e; ++i) {
-        const int e = s->act_e[i];
-        if (m->neighbour[e] < 0)
-            s->edge_vol_step[e] += weight * dt * m->length[e] * s->fh[e];
+    for (size_t i = 0; i < s->n_act_b; ++i) {
+        const int e = s->act_b[i];
+        s->edge_vol_step[e] += weight * dt * m->length[e] * s->fh[e];
     }
     const double gm = s->gmag;
     for (size_t i = 0; i < s->n_act_owned; ++i) {
@@ -1229,8 +1234,8 @@ static gf_status step_once(gf_surface *s, double dt)
     /* the set of gf_surface_max_dt, unless the state changed since */
     if (!s->active_fresh && ((st = exchange(s, s->h, 1)) || (st = build_active(s))))
         return st;
-    for (size_t i = 0; i < s->n_act_e; ++i)
-        s->edge_vol_step[s->act_e[i]] = 0.0;
+    for (size_t i = 0; i < s->n_act_b; ++i)
+        s->edge_vol_step[s->act_b[i]] = 0.0;
     for (size_t i = 0; i < s->n_act_f; ++i)
         s->a_save[s->act_f[i]] = s->a[s->act_f[i]];
     copy_active(s, s->h, s->mom, s->h1, s->m1);
@@ -1252,8 +1257,8 @@ static gf_status step_once(gf_surface *s, double dt)
         for (int k = 0; k < 3; ++k)
             s->mom[3 * f + k] = 0.5 * (s->mom[3 * f + k] + s->m2[3 * f + k]);
     }
-    for (size_t i = 0; i < s->n_act_e; ++i) {
-        const int e = s->act_e[i];
+    for (size_t i = 0; i < s->n_act_b; ++i) { /* (an internal edge's volume stays 0) */
+        const int e = s->act_b[i];
         s->edge_vol[e] += s->edge_vol_step[e];
     }
     /* The active set is a function of which faces are wet (h > 0): while
