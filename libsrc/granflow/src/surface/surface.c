@@ -2,6 +2,7 @@
 #include "granflow/surface.h"
 #include "internal.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -83,6 +84,7 @@ struct gf_surface {
     int *fe;
     int *fs_other;          /* per slot: the face across the edge, -1 on a boundary */
     unsigned char *fs_nb;   /* per slot: the face is the edge's neighbour */
+    int *fs_es;             /* per slot: the offset of the face's side of the edge in gf_surface.es */
     double *fs_geo;         /* SG per slot */
     /* per-edge geometry: frame nu, t, nu_L (owner plane), nu_R (neighbour
      * plane) (EF per edge), and the kernels' precomputed vectors (EG) */
@@ -178,7 +180,7 @@ void gf_surface_free(gf_surface *s)
                     s->acc_pn,   s->fh,     s->eacc, s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f, s->act_b,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
-                    s->fs_other, s->fs_nb, s->fs_geo, s->pface};
+                    s->fs_other, s->fs_nb, s->fs_geo, s->fs_es, s->pface};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
         free(bufs[i]);
     free(s);
@@ -310,6 +312,8 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     if (cfg->startup_levels > 0 && !mesh->edge_points)
         return gf_fail(GF_EINVAL, "surface scheme: startup_levels = %d needs the mesh's edge_points (the end "
                                   "points of each edge)", cfg->startup_levels);
+    if (mesh->n_edges > (size_t)INT_MAX / 8) /* the per-slot offsets into gf_surface.es are int */
+        return gf_fail(GF_EDOM, "surface mesh: %zu edges, at most %d allowed", mesh->n_edges, INT_MAX / 8);
     gf_surface *s = calloc(1, sizeof *s);
     if (!s)
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
@@ -395,7 +399,8 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->fs_nb = malloc(ns + 1);
     s->fs_geo = malloc((SG * ns + 1) * sizeof *s->fs_geo);
     s->pface = calloc(nf + 1, 1);
-    if (!s->fs_other || !s->fs_nb || !s->fs_geo || !s->pface) {
+    s->fs_es = malloc((ns + 1) * sizeof *s->fs_es);
+    if (!s->fs_other || !s->fs_nb || !s->fs_geo || !s->pface || !s->fs_es) {
         gf_surface_free(s);
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
     }
@@ -404,6 +409,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
             const int e = s->fe[j], isown = mesh->owner[e] == (int)f;
             s->fs_other[j] = isown ? mesh->neighbour[e] : mesh->owner[e];
             s->fs_nb[j] = (unsigned char)!isown;
+            s->fs_es[j] = 8 * e + (isown ? 0 : 4);
             if (f < nf && s->fs_other[j] >= (int)nf)
                 s->pface[f] = 1;
         }
@@ -777,7 +783,7 @@ static void gradients(gf_surface *s, const double *H)
         const v4i rec = wet ? all : lane0;
         for (size_t j = j0; j < j1; ++j) {
             const double *r = sg0 + SG * (j - j0) + 3;
-            double *q = s->es + 8 * s->fe[j] + 4 * s->fs_nb[j];
+            double *q = s->es + s->fs_es[j];
             const v4d qr = vsel(rec, q0 + (Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2])), q0);
             q[0] = qr[0] < 0.0 ? 0.0 : qr[0];
             q[1] = qr[1], q[2] = qr[2], q[3] = qr[3];
