@@ -16,10 +16,10 @@
  *    bound reads), nu, t, [12] the length, [13], [14] length * nu . n_owner,
  *    length * nu . n_neighbour (the normal part of the edge pressure in
  *    eq. 33);
- *  - gf_surface.geo, EG doubles per edge (gradients and limiter; edge fluxes
- *    of ghosts and inactive faces): [0..2] length * edge normal (the
- *    Green–Gauss weight of the owner), [3..5], [6..8] edge centre minus
- *    owner / neighbour centre. */
+ *  - gf_surface.geo, EG doubles per edge (the face-slot tables below are
+ *    built from it; edge fluxes of ghosts and inactive faces): [0..2]
+ *    length * edge normal (the Green–Gauss weight of the owner), [3..5],
+ *    [6..8] edge centre minus owner / neighbour centre. */
 #define EF 16 /* 15 used */
 #define EF_NUL 0
 #define EF_NUR 3
