@@ -1224,7 +1224,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
 /* The stage output's ghost entries (the owned active faces' are all written
  * by the stage; the faces outside the active set hold the state,
  * build_active) */
-static void copy_active(gf_surface *s, const double *h, const double *m, double *ho, double *mo)
+static void copy_ghosts(gf_surface *s, const double *h, const double *m, double *ho, double *mo)
 {
     for (size_t i = s->n_act_owned; i < s->n_act_f; ++i) {
         const int f = s->act_f[i];
@@ -1244,9 +1244,9 @@ static gf_status step_once(gf_surface *s, double dt)
         s->edge_vol_step[s->act_b[i]] = 0.0;
     for (size_t i = 0; i < s->n_act_f; ++i)
         s->a_save[s->act_f[i]] = s->a[s->act_f[i]];
-    copy_active(s, s->h, s->mom, s->h1, s->m1);
+    copy_ghosts(s, s->h, s->mom, s->h1, s->m1);
     if (!(st = stage(s, dt, s->h, s->mom, s->h1, s->m1, 0.5))) {
-        copy_active(s, s->h1, s->m1, s->h2, s->m2);
+        copy_ghosts(s, s->h1, s->m1, s->h2, s->m2);
         st = stage(s, dt, s->h1, s->m1, s->h2, s->m2, 0.5);
     }
     if (st) {
