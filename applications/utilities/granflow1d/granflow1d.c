@@ -428,10 +428,9 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
         const char *const *keys = kinetic ? dg_keys : kin_keys;
         const size_t nk = kinetic ? sizeof dg_keys / sizeof *dg_keys : sizeof kin_keys / sizeof *kin_keys;
         for (size_t i = 0; i < nk; ++i)
-            for (int j = 0; j < d.n; ++j)
-                if (!strcmp(d.e[j].section, "solver") && !strcmp(d.e[j].key, keys[i]))
-                    fprintf(stderr, "granflow1d: %s: note: [solver] %s applies to method = %s, not %s; ignored\n",
-                            file_name, keys[i], kinetic ? "rkdg" : "kinetic", kinetic ? "kinetic" : "rkdg");
+            if (find(&d, "solver", keys[i]))
+                fprintf(stderr, "granflow1d: %s: note: [solver] %s applies to method = %s, not %s; ignored\n",
+                        file_name, keys[i], kinetic ? "rkdg" : "kinetic", kinetic ? "kinetic" : "rkdg");
     }
     c.kinetic_order = (int)get_int(&d, "solver", "kinetic_order", 1, 1, 2);
     c.cfl = get_num(&d, "solver", "cfl", 0.0, 0.0, 1.0);
