@@ -33,7 +33,15 @@ typedef struct dg {
     double *czg, *szg, *kg;
     double *czf;
     double *fh, *fqx;           /* interface fluxes, n + 1 */
+    /* the cells a step computes, lo..hi (active_range); outside them every
+     * mode is exactly 0 and stays so */
+    size_t lo, hi;
 } dg;
+
+/* min and max of two numbers (no NaN here): inline, where fmin and fmax
+ * are library calls */
+static inline double dmin(double a, double b) { return a < b ? a : b; }
+static inline double dmax(double a, double b) { return a > b ? a : b; }
 
 static double legendre(int m, double x)
 {
@@ -190,10 +198,10 @@ static inline void point_state(const gf_sh1d *s, double h, double q, double *hp,
 
 static void update_k(const gf_sh1d *s, dg *d, const double *h, const double *q)
 {
-    const size_t n = s->n, M = (size_t)d->m;
-    for (size_t c = 0; c < d->nc; ++c)
+    const size_t M = (size_t)d->m;
+    for (size_t c = d->lo - 1; c <= d->hi + 1; ++c)
         d->ubar[c] = gf_sh1d_velocity(s, h[c * M], q[c * M]);
-    for (size_t c = 1; c <= n; ++c)
+    for (size_t c = d->lo; c <= d->hi; ++c)
         d->k[c] = gf_earth_pressure_k(&s->cfg.earth_pressure, d->ubar[c + 1] - d->ubar[c - 1]);
 }
 
@@ -214,16 +222,16 @@ static void update_k(const gf_sh1d *s, dg *d, const double *h, const double *q)
 
 /* Right-hand side without friction (rh, rq), the friction term of every q
  * mode (fm) and the friction capacity of the mean (cap), per unit time. */
-static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
+static inline __attribute__((always_inline)) void rhs_m(const gf_sh1d *s, dg *d, double *h, double *q,
+                                                        const int M)
 {
-    const size_t n = s->n;
-    const int M = d->m, G = d->ng;
+    const int G = M; /* d->ng */
     const double eps = s->cfg.epsilon, grav = s->cfg.g, dx = s->dx;
     fill_ghosts(s, d, h, q);
     update_k(s, d, h, q);
     fill_ghosts(s, d, h, q);
 
-    for (size_t f = 0; f <= n; ++f) { /* interface between cells f and f+1 */
+    for (size_t f = d->lo - 1; f <= d->hi; ++f) { /* interface between cells f and f+1 */
         double hl, ul, hr, ur;
         point_state(s, right_value(&h[f * M], M), right_value(&q[f * M], M), &hl, &ul);
         point_state(s, left_value(&h[(f + 1) * M], M), left_value(&q[(f + 1) * M], M), &hr, &ur);
@@ -245,7 +253,7 @@ static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
             d->fqx[f] = 0.5 * (fl1 + fr1) - 0.5 * alpha * (qr - ql);
         }
     }
-    for (size_t c = 1; c <= n; ++c) {
+    for (size_t c = d->lo; c <= d->hi; ++c) {
         const double *hc = &h[c * M], *qc = &q[c * M];
         double vh[MAXM] = {0}, vq[MAXM] = {0}, sq[MAXM] = {0}, fr[MAXM] = {0};
         double cap = 0.0;
@@ -277,6 +285,17 @@ static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
     }
 }
 
+/* rhs_m with the number of modes a constant, so that the loops over modes
+ * and Gauss points unroll (the same operations in the same order) */
+static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
+{
+    switch (d->m) {
+    case 1: rhs_m(s, d, h, q, 1); break;
+    case 2: rhs_m(s, d, h, q, 2); break;
+    default: rhs_m(s, d, h, q, 3); break;
+    }
+}
+
 /* TVB-modified minmod: the first argument unchanged when small (M dx^2) */
 static inline double mmt(const gf_sh1d *s, double a, double b, double c)
 {
@@ -293,8 +312,9 @@ static void limit_moments(const gf_sh1d *s, const dg *d, double *u)
 {
     const int M = d->m;
     /* neighbours' modes as they were before this sweep: left-right symmetric */
-    memcpy(d->lim, u, d->nc * (size_t)M * sizeof *u);
-    for (size_t c = 1; c <= s->n; ++c) {
+    memcpy(d->lim + (d->lo - 1) * (size_t)M, u + (d->lo - 1) * (size_t)M,
+           (d->hi - d->lo + 3) * (size_t)M * sizeof *u);
+    for (size_t c = d->lo; c <= d->hi; ++c) {
         double *uc = &u[c * (size_t)M];
         const double *ul = &d->lim[(c - 1) * (size_t)M], *ur = &d->lim[(c + 1) * (size_t)M];
         for (int m = M - 1; m >= 1; --m) {
@@ -315,13 +335,12 @@ static void limit_var(const gf_sh1d *s, const dg *d, double *u)
         limit_moments(s, d, u);
         return;
     }
-    const size_t n = s->n;
     const int M = d->m;
     const double gam = s->cfg.gamma;
     if (M < 2 || s->cfg.limiter != GF_LIMITER_MINMOD)
         return;
     /* means are not changed by limiting: use them directly */
-    for (size_t c = 1; c <= n; ++c) {
+    for (size_t c = d->lo; c <= d->hi; ++c) {
         double *uc = &u[c * (size_t)M];
         const double dm = gam * (uc[0] - u[(c - 1) * (size_t)M]);
         const double dp = gam * (u[(c + 1) * (size_t)M] - uc[0]);
@@ -345,11 +364,11 @@ static void limit_var(const gf_sh1d *s, const dg *d, double *u)
  * Without it, where h(x) nearly vanishes at a cell end (a dry front, after
  * the positivity scaling) q/h there is arbitrary: spurious speeds, wave-speed
  * estimates and fluxes follow. */
-static void limit_velocity(const gf_sh1d *s, dg *d, double *h, double *q)
+static inline __attribute__((always_inline)) void limit_velocity(const gf_sh1d *s, dg *d, double *h, double *q,
+                                                                 const int M)
 {
-    const int M = d->m;
     const double hs = s->cfg.h_semi;
-    for (size_t c = 1; c <= s->n; ++c) {
+    for (size_t c = d->lo; c <= d->hi; ++c) {
         double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
         if (hc[0] < hs)
             continue;
@@ -357,17 +376,17 @@ static void limit_velocity(const gf_sh1d *s, dg *d, double *h, double *q)
         double lo = ub, hi = ub;
         for (size_t nb = c - 1; nb <= c + 1; nb += 2)
             if (h[nb * (size_t)M] >= hs) {
-                lo = fmin(lo, d->ubar[nb]);
-                hi = fmax(hi, d->ubar[nb]);
+                lo = dmin(lo, d->ubar[nb]);
+                hi = dmax(hi, d->ubar[nb]);
             }
         /* a tolerance far above round-off and far below any physical velocity
          * difference keeps the decision continuous at velocity extrema (left and
          * right mirror images are limited alike) */
-        const double tol = 1e-8 * (fmax(fabs(lo), fabs(hi)) + sqrt(s->cfg.epsilon * d->k[c] * hc[0]));
+        const double tol = 1e-8 * (dmax(fabs(lo), fabs(hi)) + sqrt(s->cfg.epsilon * d->k[c] * hc[0]));
         lo -= tol;
         hi += tol;
         double theta = 1.0;
-        for (int p = -2; p < d->ng && theta > 0.0; ++p) {
+        for (int p = -2; p < M && theta > 0.0; ++p) {
             const double x = p == -2 ? -1.0 : p == -1 ? 1.0 : d->xg[p];
             const double hp = poly(hc, M, x), dq = poly(qc, M, x) - ub * hp;
             if (dq == 0.0)
@@ -377,7 +396,7 @@ static void limit_velocity(const gf_sh1d *s, dg *d, double *h, double *q)
                 break;
             }
             const double room = (dq > 0.0 ? hi - ub : lo - ub) * hp / dq;
-            theta = fmin(theta, fmax(room, 0.0));
+            theta = dmin(theta, dmax(room, 0.0));
         }
         if (theta < 1.0)
             for (int m = 1; m < M; ++m)
@@ -386,12 +405,11 @@ static void limit_velocity(const gf_sh1d *s, dg *d, double *h, double *q)
 }
 
 /* Positivity scaling, dry and semi-wet treatment (section 3.4). */
-static gf_status fix_cells(gf_sh1d *s, dg *d, double *h, double *q)
+static inline __attribute__((always_inline)) gf_status fix_cells_m(gf_sh1d *s, dg *d, double *h, double *q,
+                                                                   const int M)
 {
-    const size_t n = s->n;
-    const int M = d->m;
     const double he = s->cfg.h_eps, hs = s->cfg.h_semi;
-    for (size_t c = 1; c <= n; ++c) {
+    for (size_t c = d->lo; c <= d->hi; ++c) {
         double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
         const double hb = hc[0];
         if (hb < 0.0) {
@@ -401,9 +419,9 @@ static gf_status fix_cells(gf_sh1d *s, dg *d, double *h, double *q)
             hc[0] = 0.0; /* round-off */
         }
         if (M > 1) {
-            double hmin = fmin(right_value(hc, M), left_value(hc, M));
-            for (int g = 0; g < d->ng; ++g)
-                hmin = fmin(hmin, poly(hc, M, d->xg[g]));
+            double hmin = dmin(right_value(hc, M), left_value(hc, M));
+            for (int g = 0; g < M; ++g)
+                hmin = dmin(hmin, poly(hc, M, d->xg[g]));
             if (hmin < 0.0) {
                 /* a hair inside [0, 1] so that round-off leaves every point >= 0 */
                 const double th = hb > 0.0 ? (1.0 - 1e-12) * hb / (hb - hmin) : 0.0;
@@ -415,9 +433,9 @@ static gf_status fix_cells(gf_sh1d *s, dg *d, double *h, double *q)
         }
     }
     fill_ghosts(s, d, h, q);
-    for (size_t c = 0; c < d->nc; ++c)
+    for (size_t c = d->lo - 1; c <= d->hi + 1; ++c)
         d->ubar[c] = h[c * (size_t)M] >= hs ? q[c * (size_t)M] / h[c * (size_t)M] : 0.0;
-    for (size_t c = 1; c <= n; ++c) {
+    for (size_t c = d->lo; c <= d->hi; ++c) {
         double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
         const double hb = hc[0];
         if (hb >= hs)
@@ -440,13 +458,23 @@ static gf_status fix_cells(gf_sh1d *s, dg *d, double *h, double *q)
             qc[m] = 0.0;
     }
     if (M > 1 && s->cfg.velocity_limiter)
-        limit_velocity(s, d, h, q);
+        limit_velocity(s, d, h, q, M);
     return GF_SUCCESS;
+}
+
+static gf_status fix_cells(gf_sh1d *s, dg *d, double *h, double *q)
+{
+    switch (d->m) {
+    case 1: return fix_cells_m(s, d, h, q, 1);
+    case 2: return fix_cells_m(s, d, h, q, 2);
+    default: return fix_cells_m(s, d, h, q, 3);
+    }
 }
 
 /* After new modes: limiting, positivity and dry treatment, moving flags. */
 static gf_status finish_state(gf_sh1d *s, dg *d)
 {
+    d->lo = 1, d->hi = s->n; /* every cell */
     fill_ghosts(s, d, d->h, d->q);
     limit_var(s, d, d->h);
     limit_var(s, d, d->q);
@@ -532,12 +560,12 @@ static double dg_max_dt(const gf_sh1d *s)
         const double beta = gf_sh_beta_c(s->cfg.epsilon, d->k[c], d->czg[c * (size_t)d->ng]);
         double hp, up;
         point_state(s, right_value(hc, M), right_value(qc, M), &hp, &up);
-        amax = fmax(amax, fabs(up) + sqrt(beta * hp));
+        amax = dmax(amax, fabs(up) + sqrt(beta * hp));
         point_state(s, left_value(hc, M), left_value(qc, M), &hp, &up);
-        amax = fmax(amax, fabs(up) + sqrt(beta * hp));
+        amax = dmax(amax, fabs(up) + sqrt(beta * hp));
         for (int g = 0; g < d->ng; ++g) {
             point_state(s, poly(hc, M, d->xg[g]), poly(qc, M, d->xg[g]), &hp, &up);
-            amax = fmax(amax, fabs(up) + sqrt(beta * hp));
+            amax = dmax(amax, fabs(up) + sqrt(beta * hp));
         }
     }
     return amax > 0.0 ? s->cfl * s->dx / amax : HUGE_VAL;
@@ -549,10 +577,9 @@ static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, double
                              const double *hb, const double *qb, double b, double dt, double *hout,
                              double *qout)
 {
-    const size_t n = s->n;
     const int M = d->m;
     rhs(s, d, hin, qin);
-    for (size_t c = 1; c <= n; ++c) {
+    for (size_t c = d->lo; c <= d->hi; ++c) {
         const size_t o = c * (size_t)M;
         double he[MAXM] = {0}, qe[MAXM] = {0};
         for (int m = 0; m < M; ++m) {
@@ -579,9 +606,44 @@ static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, double
     limit_var(s, d, hout);
     limit_var(s, d, qout);
     gf_status st = fix_cells(s, d, hout, qout);
-    for (size_t c = 1; c <= n; ++c)
+    for (size_t c = d->lo; c <= d->hi; ++c)
         d->moving[c] = !d->stopped[c] && qout[c * (size_t)M] != 0.0;
     return st;
+}
+
+/* The cells a step can change: those within ACTIVE_MARGIN cells of one
+ * with a mode that is not 0.  A cell whose modes and whose neighbours' modes
+ * are all 0 (dry, at rest) gets no flux, source or friction and stays
+ * exactly 0, and each of the step's three stages wets at most one more cell
+ * on each side (fluxes cross one interface; the limiters only shrink
+ * modes); so skipping the others changes no bit of the result, and a dry
+ * bed costs nothing.  Periodic boundaries: every cell. */
+#define ACTIVE_MARGIN 4
+static void active_range(const gf_sh1d *s, dg *d)
+{
+    const size_t n = s->n, M = (size_t)d->m;
+    d->lo = 1, d->hi = n;
+    if (s->cfg.bc_left == GF_BC_PERIODIC || s->cfg.bc_right == GF_BC_PERIODIC)
+        return;
+    size_t first = 0, last = 0;
+    for (size_t c = 1; c <= n && !first; ++c)
+        for (size_t m = 0; m < M; ++m)
+            if (d->h[c * M + m] != 0.0 || d->q[c * M + m] != 0.0) {
+                first = c;
+                break;
+            }
+    if (!first) { /* all dry: nothing to compute */
+        d->hi = 0;
+        return;
+    }
+    for (size_t c = n; c >= first && !last; --c)
+        for (size_t m = 0; m < M; ++m)
+            if (d->h[c * M + m] != 0.0 || d->q[c * M + m] != 0.0) {
+                last = c;
+                break;
+            }
+    d->lo = first > ACTIVE_MARGIN ? first - ACTIVE_MARGIN : 1;
+    d->hi = last + ACTIVE_MARGIN < n ? last + ACTIVE_MARGIN : n;
 }
 
 /* One SSP-RK3 step (section 3.2) from (h, q); GF_EPHYS when a stage made a
@@ -590,6 +652,7 @@ static gf_status rk3_step(gf_sh1d *s, dg *d, double dt)
 {
     const size_t nm = d->nc * (size_t)d->m;
     gf_status st;
+    active_range(s, d);
     memcpy(d->h0, d->h, nm * sizeof *d->h);
     memcpy(d->q0, d->q, nm * sizeof *d->q);
     memcpy(d->moving0, d->moving, d->nc);
@@ -603,7 +666,7 @@ static gf_status rk3_step(gf_sh1d *s, dg *d, double dt)
         return st;
     }
     /* cells stopped by friction in the last stage are at rest */
-    for (size_t c = 1; c <= s->n; ++c)
+    for (size_t c = d->lo; c <= d->hi; ++c)
         if (d->stopped[c])
             for (int m = 0; m < d->m; ++m)
                 d->q[c * (size_t)d->m + m] = 0.0;

@@ -17,6 +17,9 @@ typedef struct kinetic {
     double *hn, *qn;        /* new depth and discharge */
     double *dh, *du;        /* kinetic_order 2: limited slopes of h and u per cell (n + 2) */
     double *h0, *q0;        /* kinetic_order 2: the state at the start of the step */
+    /* the cells a step computes, lo..hi (active_range); outside them h and q
+     * are exactly 0 and stay so */
+    size_t lo, hi;
 } kinetic;
 
 void gf_kinetic_half_fluxes(double h, double u, double beta, double p[2], double n[2])
@@ -99,6 +102,7 @@ static gf_status kinetic_init(gf_sh1d *s)
     k->slow = flags;
     k->mod = flags + (n + 2);
     k->first = flags + 2 * (n + 2);
+    k->lo = 1, k->hi = n;
     s->impl = k;
     /* second order: the cell's mass leaves through both of its reconstructed
      * edge states, each carrying half of it (h = (h_L + h_R)/2), so the
@@ -161,16 +165,40 @@ static gf_status kinetic_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
     return GF_SUCCESS;
 }
 
-static void update_beta(const gf_sh1d *s, kinetic *k)
+/* The cells a step can change: those within ACTIVE_MARGIN cells of one
+ * with h or q not 0.  A dry cell between dry neighbours gets no flux and no
+ * momentum (h = q = 0 stays exactly 0), and each stage wets at most one more
+ * cell on each side, so skipping the others changes no bit of the result
+ * and a dry bed costs nothing.  Periodic boundaries: every cell. */
+#define ACTIVE_MARGIN 4
+static void active_range(const gf_sh1d *s, kinetic *k)
 {
     const size_t n = s->n;
-    for (size_t i = 1; i <= n; ++i) {
+    k->lo = 1, k->hi = n;
+    if (s->cfg.bc_left == GF_BC_PERIODIC || s->cfg.bc_right == GF_BC_PERIODIC)
+        return;
+    size_t first = 1, last = n;
+    while (first <= n && k->h[first] == 0.0 && k->q[first] == 0.0)
+        ++first;
+    if (first > n) { /* all dry */
+        k->hi = 0;
+        return;
+    }
+    while (k->h[last] == 0.0 && k->q[last] == 0.0)
+        --last;
+    k->lo = first > ACTIVE_MARGIN ? first - ACTIVE_MARGIN : 1;
+    k->hi = last + ACTIVE_MARGIN < n ? last + ACTIVE_MARGIN : n;
+}
+
+static void update_beta(const gf_sh1d *s, kinetic *k)
+{
+    for (size_t i = k->lo; i <= k->hi; ++i) {
         const double ul = gf_sh1d_velocity(s, k->h[i - 1], k->q[i - 1]);
         const double ur = gf_sh1d_velocity(s, k->h[i + 1], k->q[i + 1]);
         k->beta[i] = gf_sh1d_beta(s, s->cfg.zeta, ur - ul);
     }
     k->beta[0] = k->beta[1];
-    k->beta[n + 1] = k->beta[n];
+    k->beta[s->n + 1] = k->beta[s->n];
 }
 
 /* kinetic_order 2 (the higher-order method the kinetic paper leaves to
@@ -194,7 +222,7 @@ static void cell_slopes(const gf_sh1d *s, const kinetic *k, size_t i, double *dh
 static void slopes(const gf_sh1d *s, kinetic *k)
 {
     const size_t n = s->n;
-    for (size_t i = 1; i <= n; ++i)
+    for (size_t i = k->lo; i <= k->hi; ++i)
         cell_slopes(s, k, i, &k->dh[i], &k->du[i]);
     switch (s->cfg.bc_left) {
     case GF_BC_PERIODIC: k->dh[0] = k->dh[n], k->du[0] = k->du[n]; break;
@@ -231,12 +259,13 @@ static void interface_states(const gf_sh1d *s, const kinetic *k, size_t f, doubl
 static double kinetic_max_dt(const gf_sh1d *s)
 {
     kinetic *k = s->impl;
+    active_range(s, k);
     update_beta(s, k);
     const int o2 = s->cfg.kinetic_order == 2;
     if (o2)
         slopes(s, k);
     double smax = 0.0;
-    for (size_t i = 1; i <= s->n; ++i) {
+    for (size_t i = k->lo; i <= k->hi; ++i) {
         const double u = gf_sh1d_velocity(s, k->h[i], k->q[i]);
         smax = fmax(smax, fabs(u) + sqrt(2.0 * k->beta[i] * k->h[i])); /* Theorem 3 */
         if (o2 && k->h[i] > s->cfg.h_eps) /* and of the reconstructed edge states */
@@ -253,6 +282,7 @@ static double kinetic_max_dt(const gf_sh1d *s)
 static double kinetic_wave_speed(const gf_sh1d *s)
 {
     kinetic *k = s->impl;
+    active_range(s, k);
     update_beta(s, k);
     double a = 0.0;
     for (size_t i = 1; i <= s->n; ++i)
@@ -309,7 +339,7 @@ static gf_status kinetic_stage(gf_sh1d *s, double dt)
         slopes(s, k);
     memset(k->first, 0, n + 1);
 
-    for (size_t i = 0; i <= n + 1; ++i) {
+    for (size_t i = k->lo - 1; i <= k->hi + 1; ++i) {
         const double u = gf_sh1d_velocity(s, k->h[i], k->q[i]);
         k->slow[i] = k->q[i] == 0.0 || fabs(k->q[i]) < fabs(dt * accel(s, k->h[i], u) * k->h[i]);
         /* kinetic_order 2: a dry cell is not slow, so the interface at a
@@ -322,14 +352,14 @@ static gf_status kinetic_stage(gf_sh1d *s, double dt)
         if (o2 && k->h[i] <= s->cfg.h_eps)
             k->slow[i] = 0;
     }
-    for (size_t f = 0; f <= n; ++f) {
+    for (size_t f = k->lo - 1; f <= k->hi; ++f) {
         k->mod[f] = scheme == 2 || (scheme == 3 && (k->slow[f] || k->slow[f + 1]));
         interface_flux(s, k, f);
     }
     /* positivity fallback to the Scheme 1 flux (Theorem 3) */
     for (int pass = 0; pass < 8; ++pass) {
         int changed = 0;
-        for (size_t i = 1; i <= n; ++i) {
+        for (size_t i = k->lo; i <= k->hi; ++i) {
             k->hn[i] = k->h[i] - lam * (k->f1[i] - k->f1[i - 1]);
             if (k->hn[i] < 0.0 && (k->mod[i] || k->mod[i - 1] || (o2 && !(k->first[i] && k->first[i - 1])))) {
                 k->mod[i] = k->mod[i - 1] = 0;
@@ -342,7 +372,7 @@ static gf_status kinetic_stage(gf_sh1d *s, double dt)
         if (!changed)
             break;
     }
-    for (size_t i = 1; i <= n; ++i) {
+    for (size_t i = k->lo; i <= k->hi; ++i) {
         const double hn = k->hn[i];
         if (hn < 0.0)
             return gf_fail(GF_EPHYS, "kinetic scheme %d: negative depth %g in cell %zu at t = %g; "
@@ -374,8 +404,10 @@ static gf_status kinetic_stage(gf_sh1d *s, double dt)
         }
         k->qn[i] = hn > s->cfg.h_eps ? qn : 0.0;
     }
-    memcpy(k->h + 1, k->hn + 1, n * sizeof *k->h);
-    memcpy(k->q + 1, k->qn + 1, n * sizeof *k->q);
+    if (k->hi >= k->lo) {
+        memcpy(k->h + k->lo, k->hn + k->lo, (k->hi - k->lo + 1) * sizeof *k->h);
+        memcpy(k->q + k->lo, k->qn + k->lo, (k->hi - k->lo + 1) * sizeof *k->q);
+    }
     fill_ghosts(s, k->h, k->q);
     return GF_SUCCESS;
 }
@@ -388,6 +420,7 @@ static gf_status kinetic_stage(gf_sh1d *s, double dt)
 static gf_status kinetic_step(gf_sh1d *s, double dt)
 {
     kinetic *k = s->impl;
+    active_range(s, k); /* for both stages */
     if (s->cfg.kinetic_order != 2)
         return kinetic_stage(s, dt);
     const size_t n = s->n;
@@ -399,7 +432,7 @@ static gf_status kinetic_step(gf_sh1d *s, double dt)
         memcpy(k->q, k->q0, (n + 2) * sizeof *k->q);
         return st;
     }
-    for (size_t i = 1; i <= n; ++i) {
+    for (size_t i = k->lo; i <= k->hi; ++i) {
         const double h = 0.5 * (k->h0[i] + k->h[i]);
         k->q[i] = h > s->cfg.h_eps ? 0.5 * (k->q0[i] + k->q[i]) : 0.0;
         k->h[i] = h;
