@@ -855,11 +855,13 @@ static void p2_order_away_from_the_front(void **state)
  *    of the same scheme's at order 1 (measured 0.25); the
  *    h = 1e-3 front's absolute error falls at first order from N = 800 to
  *    1600 (order 1: about 1/2); mass to 1e-12 (Ritter);
- *  - with startup_levels = 5: on the incline the front within 3 cells at
- *    N = 400, 800, 1600 (measured -0.55, -0.59, +0.68); on Ritter within 6
- *    (-3.6, -4.9, -3.4: each level's phase starts from a tip only about 20
- *    of its cells out, which costs this scheme a few cells, RKDG P1 none;
- *    from a resolved start see resolved_ritter_front_every_scheme);
+ *  - with startup_levels = 5 (this scheme's start-up ends when the fan
+ *    spans 60 cells, kinetic1d.c): both fronts within 3 cells at N = 200,
+ *    400, 800, 1600 (measured Ritter -1.1, -2.3, -2.7, -0.5; incline +0.5,
+ *    +0.4, +1.2, +2.7; with the 40 cells of RKDG, Ritter's were -3.6, -4.9,
+ *    -3.4 at N >= 400: its tip is not reconstructed, so a steep tip costs
+ *    it a few cells, RKDG P1 none; from a resolved start see
+ *    resolved_ritter_front_every_scheme);
  *  - Scheme 2, which takes the means at every interface, is refused. */
 static void kinetic_order_two(void **state)
 {
@@ -910,11 +912,11 @@ static void kinetic_order_two(void **state)
     front_startup_levels = 5;
     for (int p = RITTER; p <= INCLINE; ++p) {
         printf("  %s, kinetic 3 order 2, startup_levels 5: front in cells, L1(h):", pname[p]);
-        for (int k = 1; k < 4; ++k) {
+        for (int k = 0; k < 4; ++k) {
             double travel, l1;
             const double e = front_error(p, gf_sh1d_kinetic, 13, ns[k], &travel, &l1);
             printf(" N=%zu %+.2f (travel %.0f) %.2e;", ns[k], e, travel, l1);
-            assert_true(fabs(e) <= (p == INCLINE ? 3.0 : 6.0));
+            assert_true(fabs(e) <= 3.0);
         }
         printf("\n");
     }

@@ -726,6 +726,6 @@ static double dg_min_depth(const gf_sh1d *s)
 
 static const gf_sh1d_type dg_type = {
     "rkdg", dg_init, dg_free, dg_set_initial, dg_max_dt, dg_step, dg_means, dg_eval, dg_min_depth,
-    dg_restrict_from, NULL,
+    dg_restrict_from, NULL, NULL,
 };
 const gf_sh1d_type *const gf_sh1d_rkdg = &dg_type;

@@ -206,7 +206,8 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
         return s->type->set_initial(s, fn, ctx);
     /* the finest grid starts from the initial data itself; its step bound
      * gives the fastest wave speed a (|u| + sqrt(beta h)), and the start-up
-     * lasts until a dam-break fan (width 3 a t) spans STARTUP_CELLS cells */
+     * lasts until a dam-break fan (width 3 a t) spans STARTUP_CELLS cells
+     * (or the scheme's own number, gf_sh1d_type.startup_cells) */
     gf_status st;
     if ((st = finer(s, L, &s->startup)) || (st = s->type->set_initial(s->startup, fn, ctx)))
         return st;
@@ -239,7 +240,8 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
         s->startup = NULL;
         return GF_SUCCESS;
     }
-    s->t_startup = STARTUP_CELLS * s->dx / (3.0 * a);
+    const double cells = s->type->startup_cells ? s->type->startup_cells(s) : STARTUP_CELLS;
+    s->t_startup = cells * s->dx / (3.0 * a);
     return GF_SUCCESS;
 }
 

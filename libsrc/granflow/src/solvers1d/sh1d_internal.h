@@ -23,6 +23,9 @@ struct gf_sh1d_type {
     /* the largest |u| + sqrt(beta h) of the state (the start-up's length);
      * NULL: the speed of max_dt's step bound */
     double (*wave_speed)(const gf_sh1d *s);
+    /* how many cells the dam-break fan spans when the start-up refinement
+     * ends; NULL: STARTUP_CELLS (sh1d.c) */
+    double (*startup_cells)(const gf_sh1d *s);
 };
 
 struct gf_sh1d {
