@@ -100,7 +100,7 @@ typedef struct gf_sh1d_config {
     /* both */
     int startup_levels;      /* start-up refinement L in 0..5 (0, the default: off).  The
                                 first phase, until the waves of the initial state have
-                                crossed about 40 cells, is computed on grids 2^L, ..., 2
+                                crossed about 40 cells (kinetic_order 2: 60), is computed on grids 2^L, ..., 2
                                 times finer and restricted to this one, mass-exactly:
                                 the first steps of discontinuous initial data (a dam
                                 break on a dry bed) are resolved instead of smeared
