@@ -113,7 +113,8 @@ struct gf_surface {
     double *ahyd;     /* hydrostatic normal acceleration max(0, -g.n) per face (nt) */
     unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt) */
     unsigned char *slow; /* |u| < dt |g| this stage (nt) */
-    unsigned char *sedge; /* internal edge with both sides slow this stage (ne) */
+    unsigned char *sedge; /* internal edge with both sides slow this stage (bit 0); bit 1: the
+                             stage's edge_flux4 takes it ("plain", stage()) (ne) */
     unsigned char *first;
     double *edge_vol, *edge_vol_step;
     double *inflow; /* per edge: h, u[3] */
@@ -910,7 +911,7 @@ static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const
     double *ea = s->eacc + EA * e;
     double hl, ul[3], F[3], fpress, un_b = 0.0, ut_b = 0.0;
     if (kind == GF_EDGE_INTERNAL) {
-        if (s->sedge[e]) {
+        if (s->sedge[e] & 1) {
             /* Both sides slow (|u| < dt |g|, at most what one step of
              * gravity gives; at rest included).  HLL's mass diffusion
              * s_L s_R (h_R - h_L), of the size of the wave speed, would keep
@@ -1000,6 +1001,92 @@ static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const
         ea[3 + k] = L * (F[1] * nu[k] + F[2] * t[k]);
 }
 
+#ifdef __AVX__
+
+static inline v4d vload(const double *p)
+{
+    v4d v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+
+/* rows r0..r3 (4 doubles each) to columns: c_k = (r0[k], r1[k], r2[k], r3[k]) */
+static inline void transpose4(v4d r0, v4d r1, v4d r2, v4d r3, v4d *c)
+{
+    const v4d t0 = __builtin_shuffle(r0, r1, (v4i){0, 4, 2, 6}), t1 = __builtin_shuffle(r0, r1, (v4i){1, 5, 3, 7});
+    const v4d t2 = __builtin_shuffle(r2, r3, (v4i){0, 4, 2, 6}), t3 = __builtin_shuffle(r2, r3, (v4i){1, 5, 3, 7});
+    c[0] = __builtin_shuffle(t0, t2, (v4i){0, 1, 4, 5});
+    c[1] = __builtin_shuffle(t1, t3, (v4i){0, 1, 4, 5});
+    c[2] = __builtin_shuffle(t0, t2, (v4i){2, 3, 6, 7});
+    c[3] = __builtin_shuffle(t1, t3, (v4i){2, 3, 6, 7});
+}
+
+/* edge_flux of four plain edges (gf_surface.sedge bit 1) at once, one per lane: the same
+ * operations in the same order as edge_flux, side_state's stored states,
+ * hll and hll_speeds, every branch taken as a selection per lane, so that
+ * each lane's results are those of edge_flux bit for bit. */
+static void edge_flux4(gf_surface *s, const int *q)
+{
+    const gf_surface_mesh *m = &s->m;
+    v4d SL[4], SR[4], FA[4], FB[4], FC[4], FD[4];
+    {
+        const double *e0 = s->es + 8 * q[0], *e1 = s->es + 8 * q[1], *e2 = s->es + 8 * q[2], *e3 = s->es + 8 * q[3];
+        transpose4(vload(e0), vload(e1), vload(e2), vload(e3), SL);
+        transpose4(vload(e0 + 4), vload(e1 + 4), vload(e2 + 4), vload(e3 + 4), SR);
+        const double *f0 = s->frame + EF * q[0], *f1 = s->frame + EF * q[1], *f2 = s->frame + EF * q[2],
+                     *f3 = s->frame + EF * q[3];
+        transpose4(vload(f0), vload(f1), vload(f2), vload(f3), FA);
+        transpose4(vload(f0 + 4), vload(f1 + 4), vload(f2 + 4), vload(f3 + 4), FB);
+        transpose4(vload(f0 + 8), vload(f1 + 8), vload(f2 + 8), vload(f3 + 8), FC);
+        transpose4(vload(f0 + 12), vload(f1 + 12), vload(f2 + 12), vload(f3 + 12), FD);
+    }
+    /* frame: nu_L = FA0..2, nu_R = FA3 FB0 FB1, nu = FB2 FB3 FC0, t = FC1..3, L PO PN = FD0..2 */
+    const v4d nul0 = FA[0], nul1 = FA[1], nul2 = FA[2], nur0 = FA[3], nur1 = FB[0], nur2 = FB[1];
+    const v4d nu0 = FB[2], nu1 = FB[3], nu2 = FC[0], t0 = FC[1], t1 = FC[2], t2 = FC[3];
+    const v4d L = FD[0], PO = FD[1], PN = FD[2];
+    const v4d hl = SL[0], hr = SR[0];
+    const v4d al = {s->a[m->owner[q[0]]], s->a[m->owner[q[1]]], s->a[m->owner[q[2]]], s->a[m->owner[q[3]]]};
+    const v4d ar = {s->a[m->neighbour[q[0]]], s->a[m->neighbour[q[1]]], s->a[m->neighbour[q[2]]],
+                    s->a[m->neighbour[q[3]]]};
+    /* dot3(ul, nul), dot3(ul, t), dot3(ur, nur), dot3(ur, t) */
+    const v4d ul = SL[1] * nul0 + SL[2] * nul1 + SL[3] * nul2, vl = SL[1] * t0 + SL[2] * t1 + SL[3] * t2;
+    const v4d ur = SR[1] * nur0 + SR[2] * nur1 + SR[3] * nur2, vr = SR[1] * t0 + SR[2] * t1 + SR[3] * t2;
+    /* hll */
+    const v4d zero = vsplat(0.0), two = vsplat(2.0), half = vsplat(0.5);
+    const v4d cl = __builtin_ia32_sqrtpd256(al * hl), cr = __builtin_ia32_sqrtpd256(ar * hr);
+    const v4i dl = hl <= zero, dr = hr <= zero;
+    /* hll_speeds */
+    const v4d us = half * (ul + ur) + (cl - cr), cs = vmax(zero, half * (cl + cr) + vsplat(0.25) * (ul - ur));
+    v4d sl = vmin(vmin(ul - cl, ur - cr), us - cs), sr = vmax(vmax(ul + cl, ur + cr), us + cs);
+    sl = vsel(dr, ul - cl, sl), sr = vsel(dr, ul + two * cl, sr);
+    sl = vsel(dl, ur - two * cr, sl), sr = vsel(dl, ur + cr, sr);
+    const v4d pl = half * al * hl * hl, pr = half * ar * hr * hr;
+    const v4d r = vsplat(1.0) / (sr - sl), ss = sl * sr;
+    v4d F0 = (sr * hl * ul - sl * hr * ur + ss * (hr - hl)) * r;
+    v4d F1 = (sr * (hl * ul * ul + pl) - sl * (hr * ur * ur + pr) + ss * (hr * ur - hl * ul)) * r;
+    v4d F2 = (sr * hl * ul * vl - sl * hr * ur * vr + ss * (hr * vr - hl * vl)) * r;
+    v4d fp = (sr * pl - sl * pr) * r;
+    const v4i right = sr <= zero, left = sl >= zero, none = dl & dr; /* applied in this order: left wins */
+    F0 = vsel(right, hr * ur, F0), F1 = vsel(right, hr * ur * ur + pr, F1), F2 = vsel(right, hr * ur * vr, F2);
+    fp = vsel(right, pr, fp);
+    F0 = vsel(left, hl * ul, F0), F1 = vsel(left, hl * ul * ul + pl, F1), F2 = vsel(left, hl * ul * vl, F2);
+    fp = vsel(left, pl, fp);
+    F0 = vsel(none, zero, F0), F1 = vsel(none, zero, F1), F2 = vsel(none, zero, F2), fp = vsel(none, zero, fp);
+    /* the sums of accumulate, as edge_flux writes them */
+    v4d out[8] = {L * F0, fp * PO, fp * PN, L * (F1 * nu0 + F2 * t0), L * (F1 * nu1 + F2 * t1),
+                  L * (F1 * nu2 + F2 * t2), zero, zero};
+    v4d rows[8];
+    transpose4(out[0], out[1], out[2], out[3], rows);
+    transpose4(out[4], out[5], out[6], out[7], rows + 4);
+    for (int k = 0; k < 4; ++k) {
+        double *ea = s->eacc + EA * q[k];
+        memcpy(ea, &rows[k], sizeof rows[k]);
+        memcpy(ea + 4, &rows[4 + k], sizeof rows[k]);
+        s->fh[q[k]] = F0[k];
+    }
+}
+#endif
+
 /* edge_flux out of line, for the positivity fallback's recomputations (the
  * pass over the active edges has it inlined) */
 static __attribute__((noinline)) void edge_flux_again(gf_surface *s, const double *H, int e, int order2)
@@ -1059,6 +1146,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
      * (internal edges with both sides slow, walls, outflow edges; not inflow
      * edges) */
     unsigned char *slow = s->slow;
+    const int o2 = c->order == 2;
     for (size_t i = 0; i < s->n_act_f; ++i) {
         const int f = s->act_f[i];
         double *u = s->u + 3 * f;
@@ -1070,7 +1158,12 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         const int e = s->act_e[i], o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
         /* a neighbour outside the active set is dry and at rest */
         const int se = kind == GF_EDGE_INTERNAL && slow[o] && (slow[n] || s->mark_f[n] != s->stamp);
-        s->sedge[e] = (unsigned char)se;
+        /* plain (bit 1): an internal edge whose flux edge_flux4 computes at
+         * order 2, not static, both faces owned, active and wet, so that
+         * both sides take the reconstructed states gradients() stores */
+        const int plain = o2 && !se && kind == GF_EDGE_INTERNAL && (size_t)o < m->n_faces && (size_t)n < m->n_faces &&
+                          s->mark_f[o] == s->stamp && s->mark_f[n] == s->stamp && H[o] > c->h_dry && H[n] > c->h_dry;
+        s->sedge[e] = (unsigned char)(se | plain << 1);
         if (kind == GF_EDGE_INFLOW || (kind == GF_EDGE_INTERNAL && !se)) {
             s->stat[o] = 0;
             if (n >= 0)
@@ -1083,6 +1176,9 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         if ((st = exchange(s, s->grad, 3 * NV)))
             return st;
     }
+#ifdef __AVX__
+    int quad[4], nq = 0;
+#endif
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i];
         if (i + PF_DIST < s->n_act_e) {
@@ -1092,8 +1188,22 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
             prefetch_block(s->eacc + EA * ep, EA, 1);
         }
         s->first[e] = 0;
+#ifdef __AVX__
+        if (order2 && s->sedge[e] == 2) { /* plain: four at a time */
+            quad[nq++] = e;
+            if (nq == 4) {
+                edge_flux4(s, quad);
+                nq = 0;
+            }
+            continue;
+        }
+#endif
         edge_flux(s, H, e, order2);
     }
+#ifdef __AVX__
+    for (int k = 0; k < nq; ++k)
+        edge_flux(s, H, quad[k], order2);
+#endif
     /* Positivity: a face whose thickness would fall below 0 has its edges
      * recomputed at first order (up to 3 passes), one that still would
      * (or any at order 1) fails the stage, and the step is halved.  In
