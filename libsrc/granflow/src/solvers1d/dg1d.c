@@ -33,7 +33,7 @@ typedef struct dg {
     double *czg, *szg, *kg;
     double *czf;
     double *fh, *fqx;           /* interface fluxes, n + 1 */
-    /* the cells a step computes, lo..hi (active_range); outside them every
+    /* the cells a step computes, lo..hi (gf_sh1d_active_range); outside them every
      * mode is exactly 0 and stays so */
     size_t lo, hi;
 } dg;
@@ -611,48 +611,13 @@ static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, double
     return st;
 }
 
-/* The cells a step can change: those within ACTIVE_MARGIN cells of one
- * with a mode that is not 0.  A cell whose modes and whose neighbours' modes
- * are all 0 (dry, at rest) gets no flux, source or friction and stays
- * exactly 0, and each of the step's three stages wets at most one more cell
- * on each side (fluxes cross one interface; the limiters only shrink
- * modes); so skipping the others changes no bit of the result, and a dry
- * bed costs nothing.  Periodic boundaries: every cell. */
-#define ACTIVE_MARGIN 4
-static void active_range(const gf_sh1d *s, dg *d)
-{
-    const size_t n = s->n, M = (size_t)d->m;
-    d->lo = 1, d->hi = n;
-    if (s->cfg.bc_left == GF_BC_PERIODIC || s->cfg.bc_right == GF_BC_PERIODIC)
-        return;
-    size_t first = 0, last = 0;
-    for (size_t c = 1; c <= n && !first; ++c)
-        for (size_t m = 0; m < M; ++m)
-            if (d->h[c * M + m] != 0.0 || d->q[c * M + m] != 0.0) {
-                first = c;
-                break;
-            }
-    if (!first) { /* all dry: nothing to compute */
-        d->hi = 0;
-        return;
-    }
-    for (size_t c = n; c >= first && !last; --c)
-        for (size_t m = 0; m < M; ++m)
-            if (d->h[c * M + m] != 0.0 || d->q[c * M + m] != 0.0) {
-                last = c;
-                break;
-            }
-    d->lo = first > ACTIVE_MARGIN ? first - ACTIVE_MARGIN : 1;
-    d->hi = last + ACTIVE_MARGIN < n ? last + ACTIVE_MARGIN : n;
-}
-
 /* One SSP-RK3 step (section 3.2) from (h, q); GF_EPHYS when a stage made a
  * mean depth negative (the state is then restored by the caller). */
 static gf_status rk3_step(gf_sh1d *s, dg *d, double dt)
 {
     const size_t nm = d->nc * (size_t)d->m;
     gf_status st;
-    active_range(s, d);
+    gf_sh1d_active_range(s, d->h, d->q, (size_t)d->m, &d->lo, &d->hi); /* the cells that can change */
     memcpy(d->h0, d->h, nm * sizeof *d->h);
     memcpy(d->q0, d->q, nm * sizeof *d->q);
     memcpy(d->moving0, d->moving, d->nc);

@@ -17,7 +17,7 @@ typedef struct kinetic {
     double *hn, *qn;        /* new depth and discharge */
     double *dh, *du;        /* kinetic_order 2: limited slopes of h and u per cell (n + 2) */
     double *h0, *q0;        /* kinetic_order 2: the state at the start of the step */
-    /* the cells a step computes, lo..hi (active_range); outside them h and q
+    /* the cells a step computes, lo..hi (gf_sh1d_active_range); outside them h and q
      * are exactly 0 and stay so */
     size_t lo, hi;
 } kinetic;
@@ -165,31 +165,6 @@ static gf_status kinetic_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
     return GF_SUCCESS;
 }
 
-/* The cells a step can change: those within ACTIVE_MARGIN cells of one
- * with h or q not 0.  A dry cell between dry neighbours gets no flux and no
- * momentum (h = q = 0 stays exactly 0), and each stage wets at most one more
- * cell on each side, so skipping the others changes no bit of the result
- * and a dry bed costs nothing.  Periodic boundaries: every cell. */
-#define ACTIVE_MARGIN 4
-static void active_range(const gf_sh1d *s, kinetic *k)
-{
-    const size_t n = s->n;
-    k->lo = 1, k->hi = n;
-    if (s->cfg.bc_left == GF_BC_PERIODIC || s->cfg.bc_right == GF_BC_PERIODIC)
-        return;
-    size_t first = 1, last = n;
-    while (first <= n && k->h[first] == 0.0 && k->q[first] == 0.0)
-        ++first;
-    if (first > n) { /* all dry */
-        k->hi = 0;
-        return;
-    }
-    while (k->h[last] == 0.0 && k->q[last] == 0.0)
-        --last;
-    k->lo = first > ACTIVE_MARGIN ? first - ACTIVE_MARGIN : 1;
-    k->hi = last + ACTIVE_MARGIN < n ? last + ACTIVE_MARGIN : n;
-}
-
 static void update_beta(const gf_sh1d *s, kinetic *k)
 {
     for (size_t i = k->lo; i <= k->hi; ++i) {
@@ -259,7 +234,7 @@ static void interface_states(const gf_sh1d *s, const kinetic *k, size_t f, doubl
 static double kinetic_max_dt(const gf_sh1d *s)
 {
     kinetic *k = s->impl;
-    active_range(s, k);
+    gf_sh1d_active_range(s, k->h, k->q, 1, &k->lo, &k->hi);
     update_beta(s, k);
     const int o2 = s->cfg.kinetic_order == 2;
     if (o2)
@@ -282,7 +257,7 @@ static double kinetic_max_dt(const gf_sh1d *s)
 static double kinetic_wave_speed(const gf_sh1d *s)
 {
     kinetic *k = s->impl;
-    active_range(s, k);
+    gf_sh1d_active_range(s, k->h, k->q, 1, &k->lo, &k->hi);
     update_beta(s, k);
     double a = 0.0;
     for (size_t i = 1; i <= s->n; ++i)
@@ -420,7 +395,7 @@ static gf_status kinetic_stage(gf_sh1d *s, double dt)
 static gf_status kinetic_step(gf_sh1d *s, double dt)
 {
     kinetic *k = s->impl;
-    active_range(s, k); /* for both stages */
+    gf_sh1d_active_range(s, k->h, k->q, 1, &k->lo, &k->hi); /* for both stages */
     if (s->cfg.kinetic_order != 2)
         return kinetic_stage(s, dt);
     const size_t n = s->n;

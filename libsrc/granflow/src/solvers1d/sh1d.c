@@ -439,6 +439,42 @@ double gf_sh1d_static_friction(const gf_sh1d *s, double h, double zeta)
     return tau;
 }
 
+/* The cells a step can change (sh1d_internal.h): a cell whose values and
+ * whose neighbours' values are all exactly 0 (dry, at rest) gets no flux,
+ * source or friction from either scheme and stays exactly 0, and each stage
+ * (three at most) wets at most one more cell on each side: fluxes cross one
+ * interface, the limiters only shrink slopes.  So the cells within
+ * ACTIVE_MARGIN of one that is not 0 are all a step needs to compute; the
+ * others keep every bit.  Periodic boundaries: every cell. */
+#define ACTIVE_MARGIN 4
+void gf_sh1d_active_range(const gf_sh1d *s, const double *h, const double *q, size_t stride, size_t *lo,
+                          size_t *hi)
+{
+    const size_t n = s->n;
+    *lo = 1, *hi = n;
+    if (s->cfg.bc_left == GF_BC_PERIODIC || s->cfg.bc_right == GF_BC_PERIODIC)
+        return;
+    size_t first = 0, last = 0;
+    for (size_t c = 1; c <= n && !first; ++c)
+        for (size_t m = 0; m < stride; ++m)
+            if (h[c * stride + m] != 0.0 || q[c * stride + m] != 0.0) {
+                first = c;
+                break;
+            }
+    if (!first) { /* all dry: nothing to compute */
+        *hi = 0;
+        return;
+    }
+    for (size_t c = n; c >= first && !last; --c)
+        for (size_t m = 0; m < stride; ++m)
+            if (h[c * stride + m] != 0.0 || q[c * stride + m] != 0.0) {
+                last = c;
+                break;
+            }
+    *lo = first > ACTIVE_MARGIN ? first - ACTIVE_MARGIN : 1;
+    *hi = last + ACTIVE_MARGIN < n ? last + ACTIVE_MARGIN : n;
+}
+
 gf_status gf_gauss_legendre5(double x[5], double w[5])
 {
     gsl_integration_glfixed_table *t = gsl_integration_glfixed_table_alloc(5);

@@ -43,6 +43,13 @@ struct gf_sh1d {
     size_t startup_steps;
 };
 
+/* The cells lo..hi (1-based, ghosts 0 and n + 1) that a step of either
+ * scheme can change: within 4 cells of one whose values (stride per cell in
+ * h and q, ghost-indexed) are not all exactly 0; hi = 0 when every cell is
+ * dry; every cell with a periodic boundary. */
+void gf_sh1d_active_range(const gf_sh1d *s, const double *h, const double *q, size_t stride, size_t *lo,
+                          size_t *hi);
+
 /* Inclination and curvature at x (constant zeta when no topography). */
 void gf_sh1d_bed(const gf_sh1d *s, double x, double *zeta, double *kappa);
 
