@@ -112,7 +112,8 @@ struct gf_surface {
                   * rates of the step bound (HLL speeds s_L, s_R) */
     double *ahyd;     /* hydrostatic normal acceleration max(0, -g.n) per face (nt) */
     unsigned char *stat; /* face in the hydrostatic (static) mode this stage (nt) */
-    unsigned char *slow; /* |u| < dt |g| this stage (nt) */
+    unsigned char *slow; /* |u| < dt |g| this stage (bit 0); owned and wet (bit 1); 0 outside the
+                            active set (nt) */
     unsigned char *sedge; /* internal edge with both sides slow this stage (bit 0); bit 1: the
                              stage's edge_flux4 takes it ("plain", stage()) (ne) */
     unsigned char *first;
@@ -644,6 +645,7 @@ static gf_status build_active(gf_surface *s)
         memcpy(s->m2 + 3 * f, s->mom + 3 * f, 3 * sizeof *s->m2);
         memset(s->grad + 3 * NV * f, 0, 3 * NV * sizeof *s->grad);
         memset(s->u + 3 * f, 0, 3 * sizeof *s->u);
+        s->slow[f] = 0;
     }
     memcpy(s->prev_f, s->act_f, s->n_act_f * sizeof *s->prev_f);
     s->n_prev_f = s->n_act_f;
@@ -1199,18 +1201,18 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         const int f = s->act_f[i];
         double *u = s->u + 3 * f;
         velocity(s, H, M, f, u);
-        slow[f] = dot3(u, u) < us2;
+        slow[f] = (unsigned char)((dot3(u, u) < us2) | ((size_t)f < m->n_faces && H[f] > c->h_dry) << 1);
         s->stat[f] = 1;
     }
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i], o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
         /* a neighbour outside the active set is dry and at rest */
-        const int se = kind == GF_EDGE_INTERNAL && slow[o] && (slow[n] || s->mark_f[n] != s->stamp);
+        const int se = kind == GF_EDGE_INTERNAL && (slow[o] & 1) && ((slow[n] & 1) || s->mark_f[n] != s->stamp);
         /* plain (bit 1): an internal edge whose flux edge_flux4 computes at
-         * order 2, not static, both faces owned, active and wet, so that
-         * both sides take the reconstructed states gradients() stores */
-        const int plain = o2 && !se && kind == GF_EDGE_INTERNAL && (size_t)o < m->n_faces && (size_t)n < m->n_faces &&
-                          s->mark_f[o] == s->stamp && s->mark_f[n] == s->stamp && H[o] > c->h_dry && H[n] > c->h_dry;
+         * order 2, not static, both faces owned, active and wet (bit 1 of
+         * slow), so that both sides take the reconstructed states
+         * gradients() stores */
+        const int plain = o2 && !se && kind == GF_EDGE_INTERNAL && (slow[o] & slow[n] & 2);
         s->sedge[e] = (unsigned char)(se | plain << 1);
         if (kind == GF_EDGE_INFLOW || (kind == GF_EDGE_INTERNAL && !se)) {
             s->stat[o] = 0;
