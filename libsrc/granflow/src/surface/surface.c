@@ -1023,6 +1023,19 @@ static inline void transpose4(v4d r0, v4d r1, v4d r2, v4d r3, v4d *c)
     c[3] = __builtin_shuffle(t1, t3, (v4i){2, 3, 6, 7});
 }
 
+/* hll_speeds on four lanes: the same operations and cases, selected per
+ * lane (both sides dry: 0, 0) */
+static inline void hll_speeds4(v4d hl, v4d ul, v4d cl, v4d hr, v4d ur, v4d cr, v4d *sl_out, v4d *sr_out)
+{
+    const v4d zero = vsplat(0.0), two = vsplat(2.0), half = vsplat(0.5);
+    const v4i dl = hl <= zero, dr = hr <= zero;
+    const v4d us = half * (ul + ur) + (cl - cr), cs = vmax(zero, half * (cl + cr) + vsplat(0.25) * (ul - ur));
+    v4d sl = vmin(vmin(ul - cl, ur - cr), us - cs), sr = vmax(vmax(ul + cl, ur + cr), us + cs);
+    sl = vsel(dr, ul - cl, sl), sr = vsel(dr, ul + two * cl, sr);
+    sl = vsel(dl, ur - two * cr, sl), sr = vsel(dl, ur + cr, sr);
+    *sl_out = vsel(dl & dr, zero, sl), *sr_out = vsel(dl & dr, zero, sr);
+}
+
 /* edge_flux of four plain edges (gf_surface.sedge bit 1) at once, one per lane: the same
  * operations in the same order as edge_flux, side_state's stored states,
  * hll and hll_speeds, every branch taken as a selection per lane, so that
@@ -1053,22 +1066,18 @@ static void edge_flux4(gf_surface *s, const int *q)
     /* dot3(ul, nul), dot3(ul, t), dot3(ur, nur), dot3(ur, t) */
     const v4d ul = SL[1] * nul0 + SL[2] * nul1 + SL[3] * nul2, vl = SL[1] * t0 + SL[2] * t1 + SL[3] * t2;
     const v4d ur = SR[1] * nur0 + SR[2] * nur1 + SR[3] * nur2, vr = SR[1] * t0 + SR[2] * t1 + SR[3] * t2;
-    /* hll */
-    const v4d zero = vsplat(0.0), two = vsplat(2.0), half = vsplat(0.5);
+    /* hll (both sides dry: no flux, below) */
+    const v4d zero = vsplat(0.0), half = vsplat(0.5);
     const v4d cl = __builtin_ia32_sqrtpd256(al * hl), cr = __builtin_ia32_sqrtpd256(ar * hr);
-    const v4i dl = hl <= zero, dr = hr <= zero;
-    /* hll_speeds */
-    const v4d us = half * (ul + ur) + (cl - cr), cs = vmax(zero, half * (cl + cr) + vsplat(0.25) * (ul - ur));
-    v4d sl = vmin(vmin(ul - cl, ur - cr), us - cs), sr = vmax(vmax(ul + cl, ur + cr), us + cs);
-    sl = vsel(dr, ul - cl, sl), sr = vsel(dr, ul + two * cl, sr);
-    sl = vsel(dl, ur - two * cr, sl), sr = vsel(dl, ur + cr, sr);
+    v4d sl, sr;
+    hll_speeds4(hl, ul, cl, hr, ur, cr, &sl, &sr);
     const v4d pl = half * al * hl * hl, pr = half * ar * hr * hr;
     const v4d r = vsplat(1.0) / (sr - sl), ss = sl * sr;
     v4d F0 = (sr * hl * ul - sl * hr * ur + ss * (hr - hl)) * r;
     v4d F1 = (sr * (hl * ul * ul + pl) - sl * (hr * ur * ur + pr) + ss * (hr * ur - hl * ul)) * r;
     v4d F2 = (sr * hl * ul * vl - sl * hr * ur * vr + ss * (hr * vr - hl * vl)) * r;
     v4d fp = (sr * pl - sl * pr) * r;
-    const v4i right = sr <= zero, left = sl >= zero, none = dl & dr; /* applied in this order: left wins */
+    const v4i right = sr <= zero, left = sl >= zero, none = (hl <= zero) & (hr <= zero); /* in this order */
     F0 = vsel(right, hr * ur, F0), F1 = vsel(right, hr * ur * ur + pr, F1), F2 = vsel(right, hr * ur * vr, F2);
     fp = vsel(right, pr, fp);
     F0 = vsel(left, hl * ul, F0), F1 = vsel(left, hl * ul * ul + pl, F1), F2 = vsel(left, hl * ul * vl, F2);
@@ -1106,7 +1115,7 @@ static void edge_speeds4(gf_surface *s, const int *q)
     const int o0 = m->owner[q[0]], o1 = m->owner[q[1]], o2 = m->owner[q[2]], o3 = m->owner[q[3]];
     const int n0 = m->neighbour[q[0]], n1 = m->neighbour[q[1]], n2 = m->neighbour[q[2]], n3 = m->neighbour[q[3]];
     const double *h = s->h, *M = s->mom, *a = s->a;
-    const v4d zero = vsplat(0.0), two = vsplat(2.0), half = vsplat(0.5), one = vsplat(1.0), hd = vsplat(s->c.h_dry);
+    const v4d zero = vsplat(0.0), one = vsplat(1.0), hd = vsplat(s->c.h_dry);
     const v4d hl = {h[o0], h[o1], h[o2], h[o3]}, hr = {h[n0], h[n1], h[n2], h[n3]};
     /* velocity(): M / h (r = 1 / h) where h > h_dry, else 0 */
     const v4i wl = hl > hd, wr = hr > hd;
@@ -1121,13 +1130,8 @@ static void edge_speeds4(gf_surface *s, const int *q)
     const v4d ul = uo0 * FA[0] + uo1 * FA[1] + uo2 * FA[2], ur = un0 * FA[3] + un1 * FB[0] + un2 * FB[1];
     const v4d al = {a[o0], a[o1], a[o2], a[o3]}, ar = {a[n0], a[n1], a[n2], a[n3]};
     const v4d cl = __builtin_ia32_sqrtpd256(al * hl), cr = __builtin_ia32_sqrtpd256(ar * hr);
-    /* hll_speeds */
-    const v4i dl = hl <= zero, dr = hr <= zero;
-    const v4d us = half * (ul + ur) + (cl - cr), cs = vmax(zero, half * (cl + cr) + vsplat(0.25) * (ul - ur));
-    v4d sl = vmin(vmin(ul - cl, ur - cr), us - cs), sr = vmax(vmax(ul + cl, ur + cr), us + cs);
-    sl = vsel(dr, ul - cl, sl), sr = vsel(dr, ul + two * cl, sr);
-    sl = vsel(dl, ur - two * cr, sl), sr = vsel(dl, ur + cr, sr);
-    sl = vsel(dl & dr, zero, sl), sr = vsel(dl & dr, zero, sr);
+    v4d sl, sr;
+    hll_speeds4(hl, ul, cl, hr, ur, cr, &sl, &sr);
     const v4d L = {m->length[q[0]], m->length[q[1]], m->length[q[2]], m->length[q[3]]};
     const v4d out = L * vmax(zero, sr), in = L * vmax(zero, -sl);
     for (int k = 0; k < 4; ++k) {
