@@ -1072,7 +1072,11 @@ static void edge_flux4(gf_surface *s, const int *q)
     v4d sl, sr;
     hll_speeds4(hl, ul, cl, hr, ur, cr, &sl, &sr);
     const v4d pl = half * al * hl * hl, pr = half * ar * hr * hr;
-    const v4d r = vsplat(1.0) / (sr - sl), ss = sl * sr;
+    /* 1 / (s_R - s_L) where HLL's middle case takes it (s_L < 0 < s_R); 1 in
+     * the other lanes, whose results are discarded: no division by zero,
+     * which traps under OpenFOAM's floating-point exception handling */
+    const v4i mid = (sl < zero) & (sr > zero);
+    const v4d r = vsplat(1.0) / vsel(mid, sr - sl, vsplat(1.0)), ss = sl * sr;
     v4d F0 = (sr * hl * ul - sl * hr * ur + ss * (hr - hl)) * r;
     v4d F1 = (sr * (hl * ul * ul + pl) - sl * (hr * ur * ur + pr) + ss * (hr * ur - hl * ul)) * r;
     v4d F2 = (sr * hl * ul * vl - sl * hr * ur * vr + ss * (hr * vr - hl * vl)) * r;
