@@ -1204,7 +1204,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
      * (internal edges with both sides slow, walls, outflow edges; not inflow
      * edges) */
     unsigned char *slow = s->slow;
-    const int o2 = c->order == 2;
+    const int order2 = c->order == 2;
     for (size_t i = 0; i < s->n_act_f; ++i) {
         const int f = s->act_f[i];
         double *u = s->u + 3 * f;
@@ -1220,7 +1220,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
          * order 2, not static, both faces owned, active and wet (bit 1 of
          * slow), so that both sides take the reconstructed states
          * gradients() stores */
-        const int plain = o2 && !se && kind == GF_EDGE_INTERNAL && (slow[o] & slow[n] & 2);
+        const int plain = order2 && !se && kind == GF_EDGE_INTERNAL && (slow[o] & slow[n] & 2);
         s->sedge[e] = (unsigned char)(se | plain << 1);
         if (kind == GF_EDGE_INFLOW || (kind == GF_EDGE_INTERNAL && !se)) {
             s->stat[o] = 0;
@@ -1228,7 +1228,6 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
                 s->stat[n] = 0;
         }
     }
-    const int order2 = c->order == 2;
     if (order2) {
         gradients(s, H);
         if ((st = exchange(s, s->grad, 3 * NV)))
