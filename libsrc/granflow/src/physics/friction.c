@@ -1,5 +1,6 @@
 #include "granflow/friction.h"
 #include "internal.h"
+#include "friction_speed.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -315,27 +316,29 @@ gf_status gf_friction_implicit_speed(const gf_friction *f, const gf_friction_sta
 {
     if (!f || !f->type || !s || !speed)
         return gf_fail(GF_EINVAL, "gf_friction_implicit_speed: null argument or uninitialised law");
-    /* the arguments' ranges: one test on the hot path (the explicit surface
-     * scheme calls this per face and stage), the named check only on failure */
-    if (!(s->h >= 1e-300 && s->h < HUGE_VAL && M >= 0.0 && M < HUGE_VAL && dt >= 0.0 && dt < HUGE_VAL &&
-          s->rho >= 1e-300 && s->rho < HUGE_VAL && s->g >= 0.0 && s->g < HUGE_VAL && isfinite(s->pb))) {
-        gf_status st;
-        if ((st = gf_check_range("flow thickness h", s->h, 1e-300, HUGE_VAL)) ||
-            (st = gf_check_range("trial momentum |h u|", M, 0.0, HUGE_VAL)) ||
-            (st = gf_check_range("time step dt", dt, 0.0, HUGE_VAL)) ||
-            (st = gf_check_range("density rho", s->rho, 1e-300, HUGE_VAL)) ||
-            (st = gf_check_range("gravity g", s->g, 0.0, HUGE_VAL)))
-            return st;
-        return gf_fail(GF_ENONFINITE, "basal pressure p_b = %g is not a finite number", s->pb);
-    }
+    return gf_friction_implicit_speed_inline(f, s, M, dt, speed);
+}
+
+gf_status gf_friction_implicit_speed_fail(const gf_friction_state *s, double M, double dt)
+{
+    gf_status st;
+    if ((st = gf_check_range("flow thickness h", s->h, 1e-300, HUGE_VAL)) ||
+        (st = gf_check_range("trial momentum |h u|", M, 0.0, HUGE_VAL)) ||
+        (st = gf_check_range("time step dt", dt, 0.0, HUGE_VAL)) ||
+        (st = gf_check_range("density rho", s->rho, 1e-300, HUGE_VAL)) ||
+        (st = gf_check_range("gravity g", s->g, 0.0, HUGE_VAL)))
+        return st;
+    return gf_fail(GF_ENONFINITE, "basal pressure p_b = %g is not a finite number", s->pb);
+}
+
+gf_status gf_friction_implicit_speed_laws(const gf_friction *f, const gf_friction_state *s, double M, double dt,
+                                          double *speed)
+{
     const double h = s->h;
-    /* Coulomb: h s + dt mu p s/(s + u0) = M, i.e. h s^2 + (h u0 + dt mu p - M) s - M u0 = 0 */
+    /* Coulomb with u0 > 0: h s + dt mu p s/(s + u0) = M, i.e. h s^2 + (h u0 + dt mu p - M) s - M u0 = 0
+     * (u0 = 0: gf_friction_implicit_speed_inline) */
     if (f->type == gf_friction_coulomb) {
-        const double mp = s->pb > 0.0 ? f->p[0] * s->pb / s->rho : 0.0, u0 = f->p[1];
-        if (u0 == 0.0) {
-            *speed = M > dt * mp ? (M - dt * mp) / h : 0.0;
-            return GF_SUCCESS;
-        }
+        const double mp = gf_friction_coulomb_mp(f, s), u0 = f->p[1];
         const double b = h * u0 + dt * mp - M;
         /* positive root, written without cancellation */
         const double disc = sqrt(b * b + 4.0 * h * M * u0);

@@ -1,5 +1,6 @@
 /* Explicit finite-volume scheme on a surface mesh: see granflow/surface.h. */
 #include "granflow/surface.h"
+#include "friction_speed.h"
 #include "internal.h"
 
 #include <limits.h>
@@ -125,6 +126,8 @@ struct gf_surface {
     unsigned *mark_f, *mark_e, *mark_g, stamp;
     int *act_f, *act_e, *ring, *prev_f;
     int *act_b; /* the boundary edges among act_e (their volumes) */
+    int *neg;   /* the owned active faces whose thickness a stage's fluxes would take below 0 (accumulate) */
+    int *defer; /* the stage's static and boundary edges, whose fluxes wait for the hydrostatic modes */
     size_t n_act_f, n_act_e, n_act_owned, n_prev_f, n_act_b;
     double *a_save;
     double *lvl; /* ring level for the parallel active set (nt) */
@@ -180,7 +183,7 @@ void gf_surface_free(gf_surface *s)
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->geo,      s->h,    s->mom,    s->h1,     s->m1,
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->es, s->acc_h,  s->acc_m,
                     s->acc_pn,   s->fh,     s->eacc, s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
-                    s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f, s->act_b,
+                    s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f, s->act_b, s->neg, s->defer,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
                     s->fs_other, s->fs_nb, s->fs_geo, s->fs_es, s->pface};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
@@ -358,13 +361,15 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->ring = malloc(nt * sizeof *s->ring);
     s->act_e = malloc((ne + 1) * sizeof *s->act_e);
     s->act_b = malloc((ne + 1) * sizeof *s->act_b);
+    s->neg = malloc(nt * sizeof *s->neg);
+    s->defer = malloc((ne + 1) * sizeof *s->defer);
     s->prev_f = malloc(nt * sizeof *s->prev_f);
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
     if (!s->fe_start || !s->fe || !s->frame || !s->geo || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
         !s->a || !s->pb || !s->grad || !s->es || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->eacc || !s->efmn || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
-        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->act_b || !s->prev_f || !s->a_save || !s->lvl) {
+        !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->act_b || !s->neg || !s->defer || !s->prev_f || !s->a_save || !s->lvl) {
         gf_surface_free(s);
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory for %zu faces", nt);
     }
@@ -679,6 +684,12 @@ static gf_status build_active(gf_surface *s)
 typedef double v4d __attribute__((vector_size(32)));
 typedef long long v4i __attribute__((vector_size(32)));
 static inline v4d vsplat(double x) { return (v4d){x, x, x, x}; }
+static inline v4d vload(const double *p)
+{
+    v4d v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
 /* lane-wise m ? a : b (every lane of m all ones or all zeros) */
 #ifdef __AVX__
 /* (vminpd a, b is a < b ? a : b per lane, vmaxpd a > b ? a : b: gmin, gmax) */
@@ -696,13 +707,101 @@ static inline int vany(v4i m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
 /* Green–Gauss gradients of h and u over the face's edges (mean of the two
  * sides; velocity only from wet neighbours), projected onto the tangent
  * plane, Barth–Jespersen limited at the edge midpoints; then the
- * reconstructed h and u at the face's edges (gf_surface.es). */
-static void gradients(gf_surface *s, const double *H)
+ * reconstructed h and u at the face's edges (gf_surface.es).  Face f, its
+ * edge slots j0 .. j0 + ne - 1 (inlined: called with ne = 4, the
+ * quadrilaterals', the loops are straight code). */
+static inline __attribute__((always_inline)) void gradient_face(gf_surface *s, const double *H, int f, size_t j0,
+                                                                size_t ne)
 {
     const gf_surface_mesh *m = &s->m;
     const double hd = s->c.h_dry;
     const int *oth = s->fs_other;
     const v4i all = {-1, -1, -1, -1}, lane0 = {-1, 0, 0, 0};
+    const double h0 = H[f], *u0 = s->u + 3 * f;
+    const int wet = h0 > hd;
+    const v4d q0 = {h0, u0[0], u0[1], u0[2]};
+    /* Gx, Gy, Gz: the x, y, z components of the gradients of the four
+     * variables (lane v: grad h, grad u_x, grad u_y, grad u_z) */
+    v4d Gx = vsplat(0.0), Gy = Gx, Gz = Gx, qmn = q0, qmx = q0;
+    const size_t j1 = j0 + ne;
+    const double *sg0 = s->fs_geo + SG * j0;
+    for (size_t j = j0; j < j1; ++j) {
+        const int other = oth[j];
+        const double *lw = sg0 + SG * (j - j0); /* w L nu_e */
+        v4d qe = q0;
+        if (other >= 0) {
+            const double hn = H[other], *un = s->u + 3 * other;
+            const v4d qn = {hn, un[0], un[1], un[2]};
+            if (wet && hn > hd) { /* all four lanes */
+                qe = vsplat(0.5) * (q0 + qn);
+                qmn = vmin(qmn, qn);
+                qmx = vmax(qmx, qn);
+            } else { /* h only */
+                qe = vsel(lane0, vsplat(0.5) * (q0 + qn), q0);
+                qmn = vsel(lane0, vmin(qmn, qn), qmn);
+                qmx = vsel(lane0, vmax(qmx, qn), qmx);
+            }
+        }
+        Gx += qe * vsplat(lw[0]);
+        Gy += qe * vsplat(lw[1]);
+        Gz += qe * vsplat(lw[2]);
+    }
+    /* tangential part, per unit area (no velocity slope on a face without velocity) */
+    const double rA = 1.0 / m->area[f], *nf = m->normal + 3 * f;
+    {
+        const v4d gn = Gx * vsplat(nf[0]) + Gy * vsplat(nf[1]) + Gz * vsplat(nf[2]);
+        const v4d ra = vsplat(rA);
+        Gx = (Gx - gn * vsplat(nf[0])) * ra;
+        Gy = (Gy - gn * vsplat(nf[1])) * ra;
+        Gz = (Gz - gn * vsplat(nf[2])) * ra;
+    }
+    if (!wet) {
+        const v4d z = vsplat(0.0);
+        Gx = vsel(lane0, Gx, z), Gy = vsel(lane0, Gy, z), Gz = vsel(lane0, Gz, z);
+    }
+    /* Barth–Jespersen: alpha = min over the edges of room/d, divided
+     * only when the ratio is below alpha <= 1 (no overflow for a
+     * denormal slope); towards a dry neighbour the velocity is
+     * extrapolated, not bounded: the thin tip of a front accelerates to
+     * u + 2c */
+    v4d alpha = vsplat(1.0);
+    const v4d rp = qmx - q0, rm = qmn - q0;
+    for (size_t j = j0; j < j1; ++j) {
+        const int other = oth[j];
+        const double *r = sg0 + SG * (j - j0) + 3; /* edge centre - face centre */
+        const v4i lanes = (other >= 0 && H[other] <= hd) ? lane0 : all;
+        const v4d d = Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2]);
+        const v4d ad = alpha * d, zero = vsplat(0.0);
+        /* d > 0 && room_max < alpha d, or d < 0 && room_min > alpha d */
+        const v4i pos = d > zero;
+        const v4i hit = ((pos & (rp < ad)) | ((d < zero) & (rm > ad))) & lanes;
+        if (vany(hit))
+            alpha = vsel(hit, vsel(pos, rp, rm) / vsel(hit, d, vsplat(1.0)), alpha);
+    }
+    const v4d c = vmax(vsplat(0.0), alpha);
+    Gx *= c, Gy *= c, Gz *= c;
+    if (s->pface[f]) { /* for the halo exchange */
+        double *Gf = s->grad + 3 * NV * f;
+        for (int v = 0; v < NV; ++v) {
+            Gf[3 * v] = Gx[v];
+            Gf[3 * v + 1] = Gy[v];
+            Gf[3 * v + 2] = Gz[v];
+        }
+    }
+    /* the reconstructed states at the face's edges (side_state, rec 1):
+     * h (not below 0: round-off of the limiter), and u where wet */
+    const v4i rec = wet ? all : lane0;
+    for (size_t j = j0; j < j1; ++j) {
+        const double *r = sg0 + SG * (j - j0) + 3;
+        double *q = s->es + s->fs_es[j];
+        const v4d qr = vsel(rec, q0 + (Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2])), q0);
+        q[0] = qr[0] < 0.0 ? 0.0 : qr[0];
+        q[1] = qr[1], q[2] = qr[2], q[3] = qr[3];
+    }
+}
+
+static void gradients(gf_surface *s, const double *H)
+{
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
         if (i + PF_DIST / 2 < s->n_act_owned) {
@@ -710,87 +809,11 @@ static void gradients(gf_surface *s, const double *H)
             for (size_t j = s->fe_start[fp]; j < s->fe_start[fp + 1]; ++j)
                 prefetch_block(s->es + 8 * s->fe[j], 8, 1);
         }
-        const double h0 = H[f], *u0 = s->u + 3 * f;
-        const int wet = h0 > hd;
-        const v4d q0 = {h0, u0[0], u0[1], u0[2]};
-        /* Gx, Gy, Gz: the x, y, z components of the gradients of the four
-         * variables (lane v: grad h, grad u_x, grad u_y, grad u_z) */
-        v4d Gx = vsplat(0.0), Gy = Gx, Gz = Gx, qmn = q0, qmx = q0;
-        const size_t j0 = s->fe_start[f], j1 = s->fe_start[f + 1];
-        const double *sg0 = s->fs_geo + SG * j0;
-        for (size_t j = j0; j < j1; ++j) {
-            const int other = oth[j];
-            const double *lw = sg0 + SG * (j - j0); /* w L nu_e */
-            v4d qe = q0;
-            if (other >= 0) {
-                const double hn = H[other], *un = s->u + 3 * other;
-                const v4d qn = {hn, un[0], un[1], un[2]};
-                if (wet && hn > hd) { /* all four lanes */
-                    qe = vsplat(0.5) * (q0 + qn);
-                    qmn = vmin(qmn, qn);
-                    qmx = vmax(qmx, qn);
-                } else { /* h only */
-                    qe = vsel(lane0, vsplat(0.5) * (q0 + qn), q0);
-                    qmn = vsel(lane0, vmin(qmn, qn), qmn);
-                    qmx = vsel(lane0, vmax(qmx, qn), qmx);
-                }
-            }
-            Gx += qe * vsplat(lw[0]);
-            Gy += qe * vsplat(lw[1]);
-            Gz += qe * vsplat(lw[2]);
-        }
-        /* tangential part, per unit area (no velocity slope on a face without velocity) */
-        const double rA = 1.0 / m->area[f], *nf = m->normal + 3 * f;
-        {
-            const v4d gn = Gx * vsplat(nf[0]) + Gy * vsplat(nf[1]) + Gz * vsplat(nf[2]);
-            const v4d ra = vsplat(rA);
-            Gx = (Gx - gn * vsplat(nf[0])) * ra;
-            Gy = (Gy - gn * vsplat(nf[1])) * ra;
-            Gz = (Gz - gn * vsplat(nf[2])) * ra;
-        }
-        if (!wet) {
-            const v4d z = vsplat(0.0);
-            Gx = vsel(lane0, Gx, z), Gy = vsel(lane0, Gy, z), Gz = vsel(lane0, Gz, z);
-        }
-        /* Barth–Jespersen: alpha = min over the edges of room/d, divided
-         * only when the ratio is below alpha <= 1 (no overflow for a
-         * denormal slope); towards a dry neighbour the velocity is
-         * extrapolated, not bounded: the thin tip of a front accelerates to
-         * u + 2c */
-        v4d alpha = vsplat(1.0);
-        const v4d rp = qmx - q0, rm = qmn - q0;
-        for (size_t j = j0; j < j1; ++j) {
-            const int other = oth[j];
-            const double *r = sg0 + SG * (j - j0) + 3; /* edge centre - face centre */
-            const v4i lanes = (other >= 0 && H[other] <= hd) ? lane0 : all;
-            const v4d d = Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2]);
-            const v4d ad = alpha * d, zero = vsplat(0.0);
-            /* d > 0 && room_max < alpha d, or d < 0 && room_min > alpha d */
-            const v4i pos = d > zero;
-            const v4i hit = ((pos & (rp < ad)) | ((d < zero) & (rm > ad))) & lanes;
-            if (vany(hit))
-                alpha = vsel(hit, vsel(pos, rp, rm) / vsel(hit, d, vsplat(1.0)), alpha);
-        }
-        const v4d c = vmax(vsplat(0.0), alpha);
-        Gx *= c, Gy *= c, Gz *= c;
-        if (s->pface[f]) { /* for the halo exchange */
-            double *Gf = s->grad + 3 * NV * f;
-            for (int v = 0; v < NV; ++v) {
-                Gf[3 * v] = Gx[v];
-                Gf[3 * v + 1] = Gy[v];
-                Gf[3 * v + 2] = Gz[v];
-            }
-        }
-        /* the reconstructed states at the face's edges (side_state, rec 1):
-         * h (not below 0: round-off of the limiter), and u where wet */
-        const v4i rec = wet ? all : lane0;
-        for (size_t j = j0; j < j1; ++j) {
-            const double *r = sg0 + SG * (j - j0) + 3;
-            double *q = s->es + s->fs_es[j];
-            const v4d qr = vsel(rec, q0 + (Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2])), q0);
-            q[0] = qr[0] < 0.0 ? 0.0 : qr[0];
-            q[1] = qr[1], q[2] = qr[2], q[3] = qr[3];
-        }
+        const size_t j0 = s->fe_start[f], ne = s->fe_start[f + 1] - j0;
+        if (ne == 4)
+            gradient_face(s, H, f, j0, 4);
+        else
+            gradient_face(s, H, f, j0, ne);
     }
 }
 
@@ -1005,13 +1028,6 @@ static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const
 
 #ifdef __AVX__
 
-static inline v4d vload(const double *p)
-{
-    v4d v;
-    memcpy(&v, p, sizeof v);
-    return v;
-}
-
 /* rows r0..r3 (4 doubles each) to columns: c_k = (r0[k], r1[k], r2[k], r3[k]) */
 static inline void transpose4(v4d r0, v4d r1, v4d r2, v4d r3, v4d *c)
 {
@@ -1157,9 +1173,12 @@ static __attribute__((noinline)) void edge_flux_again(gf_surface *s, const doubl
  * depend on which faces are active or on how the mesh is decomposed).  The
  * owner takes + L (fh, fm, fp nu.n), the neighbour - L (fh, fmn, fpn nu.n),
  * so a processor edge, owned on both of its ranks, gives each side what the
- * serial mesh gives it (the edge frame and HLL are antisymmetric). */
-static void accumulate(gf_surface *s)
+ * serial mesh gives it (the edge frame and HLL are antisymmetric).  The faces
+ * whose thickness H - dt/A sum L fh would be below 0 are listed in
+ * gf_surface.neg in the order of the active set; returns their number. */
+static size_t accumulate(gf_surface *s, const double *H, double dt)
 {
+    size_t nneg = 0;
     const gf_surface_mesh *m = &s->m;
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
@@ -1168,26 +1187,30 @@ static void accumulate(gf_surface *s)
             for (size_t j = s->fe_start[fp]; j < s->fe_start[fp + 1]; ++j)
                 prefetch_block(s->eacc + EA * s->fe[j], EA, 0);
         }
-        double ah = 0.0, ap = 0.0, am[3] = {0.0, 0.0, 0.0};
+        /* lanes (sum L fh, sum fp nu.n, sum L fm_x, sum L fm_y), and sum L fm_z */
+        v4d A = vsplat(0.0);
+        double amz = 0.0;
         for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
             const int e = s->fe[j];
-            const double *ea = s->eacc + EA * e;
-            if (m->owner[e] == f) {
-                ah += ea[0];
-                ap += ea[1];
-                for (int k = 0; k < 3; ++k)
-                    am[k] += ea[3 + k];
-            } else {
-                ah -= ea[0];
-                ap -= ea[2];
-                const double *fn = ea[6] != 0.0 ? s->efmn + 3 * e : ea + 3;
-                for (int k = 0; k < 3; ++k)
-                    am[k] -= fn[k];
+            const v4d v = vload(s->eacc + EA * e), w = vload(s->eacc + EA * e + 4); /* [0..3], [4..7] */
+            if (!s->fs_nb[j]) { /* the owner: + L fh, fp PO, L fm */
+                A += __builtin_shuffle(v, w, (v4i){0, 1, 3, 4});
+                amz += w[1];
+            } else if (w[2] == 0.0) { /* the neighbour: - L fh, fpn PN, L fm */
+                A -= __builtin_shuffle(v, w, (v4i){0, 2, 3, 4});
+                amz -= w[1];
+            } else { /* the neighbour of a static edge: L fmn */
+                const double *fn = s->efmn + 3 * e;
+                A -= (v4d){v[0], v[2], fn[0], fn[1]};
+                amz -= fn[2];
             }
         }
-        s->acc_h[f] = ah, s->acc_pn[f] = ap;
-        memcpy(s->acc_m + 3 * f, am, sizeof am);
+        s->acc_h[f] = A[0], s->acc_pn[f] = A[1];
+        s->acc_m[3 * f] = A[2], s->acc_m[3 * f + 1] = A[3], s->acc_m[3 * f + 2] = amz;
+        if (H[f] - dt / m->area[f] * A[0] < 0.0)
+            s->neg[nneg++] = f;
     }
+    return nneg;
 }
 
 /* One forward-Euler stage with implicit friction: (H, M) -> (Ho, Mo). */
@@ -1212,8 +1235,29 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
         slow[f] = (unsigned char)((dot3(u, u) < us2) | ((size_t)f < m->n_faces && H[f] > c->h_dry) << 1);
         s->stat[f] = 1;
     }
+    if (order2) {
+        gradients(s, H);
+        if ((st = exchange(s, s->grad, 3 * NV)))
+            return st;
+    }
+    /* One pass over the active edges classifies each (gf_surface.sedge),
+     * clears the hydrostatic mode of the faces of a non-static edge, and
+     * computes the flux of every internal edge that is not static (which
+     * reads no hydrostatic mode); the static and boundary edges, whose
+     * fluxes read the faces' final modes, follow in a second pass. */
+    size_t nd = 0;
+#ifdef __AVX__
+    int quad[4], nq = 0;
+#endif
     for (size_t i = 0; i < s->n_act_e; ++i) {
         const int e = s->act_e[i], o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
+        if (i + PF_DIST < s->n_act_e) {
+            const int ep = s->act_e[i + PF_DIST];
+            prefetch_block(s->frame + EF * ep, EF, 0);
+            prefetch_block(s->es + 8 * ep, 8, 0);
+            prefetch_block(s->eacc + EA * ep, EA, 1);
+        }
+        s->first[e] = 0;
         /* a neighbour outside the active set is dry and at rest */
         const int se = kind == GF_EDGE_INTERNAL && (slow[o] & 1) && ((slow[n] & 1) || s->mark_f[n] != s->stamp);
         /* plain (bit 1): an internal edge whose flux edge_flux4 computes at
@@ -1227,26 +1271,8 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
             if (n >= 0)
                 s->stat[n] = 0;
         }
-    }
-    if (order2) {
-        gradients(s, H);
-        if ((st = exchange(s, s->grad, 3 * NV)))
-            return st;
-    }
 #ifdef __AVX__
-    int quad[4], nq = 0;
-#endif
-    for (size_t i = 0; i < s->n_act_e; ++i) {
-        const int e = s->act_e[i];
-        if (i + PF_DIST < s->n_act_e) {
-            const int ep = s->act_e[i + PF_DIST];
-            prefetch_block(s->frame + EF * ep, EF, 0);
-            prefetch_block(s->es + 8 * ep, 8, 0);
-            prefetch_block(s->eacc + EA * ep, EA, 1);
-        }
-        s->first[e] = 0;
-#ifdef __AVX__
-        if (order2 && s->sedge[e] == 2) { /* plain: four at a time */
+        if (plain) { /* four at a time */
             quad[nq++] = e;
             if (nq == 4) {
                 edge_flux4(s, quad);
@@ -1255,12 +1281,17 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
             continue;
         }
 #endif
-        edge_flux(s, H, e, order2);
+        if (kind == GF_EDGE_INTERNAL && !se)
+            edge_flux(s, H, e, order2);
+        else
+            s->defer[nd++] = e;
     }
 #ifdef __AVX__
     for (int k = 0; k < nq; ++k)
         edge_flux(s, H, quad[k], order2);
 #endif
+    for (size_t i = 0; i < nd; ++i)
+        edge_flux(s, H, s->defer[i], order2);
     /* Positivity: a face whose thickness would fall below 0 has its edges
      * recomputed at first order (up to 3 passes), one that still would
      * (or any at order 1) fails the stage, and the step is halved.  In
@@ -1274,12 +1305,12 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     int *badl = s->ring;   /* the faces marked this pass (scratch) */
     const int par = s->m.n_ghosts > 0 || s->minfn;
     for (int pass = 0;; ++pass) {
-        accumulate(s);
+        const size_t nneg = accumulate(s, H, dt);
         int bad = 0, fail = 0, fail_f = -1;
         size_t nbad = 0;
         double fail_h = 0.0;
-        for (size_t i = 0; i < s->n_act_owned; ++i) {
-            const int f = s->act_f[i];
+        for (size_t i = 0; i < nneg; ++i) { /* the faces with H - dt/A sum L fh < 0 */
+            const int f = s->neg[i];
             const double hn = H[f] - dt / m->area[f] * s->acc_h[f];
             if (hn < -tiny || (hn < 0.0 && pass < 3 && order2)) {
                 if (pass >= 3 || !order2) {
@@ -1371,7 +1402,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
             double speed = 0.0;
             if (Mag > 0.0) {
                 const gf_friction_state fs = {hn, 0.0, c->rho * pbr, c->rho, gm};
-                if ((st = gf_friction_implicit_speed(&c->friction, &fs, Mag, dt, &speed)))
+                if ((st = gf_friction_implicit_speed_inline(&c->friction, &fs, Mag, dt, &speed)))
                     return st;
             }
             const double r = Mag > 0.0 ? hn * speed / Mag : 0.0;
