@@ -128,7 +128,8 @@ struct gf_surface {
     int *act_b; /* the boundary edges among act_e (their volumes) */
     int *neg;   /* the owned active faces whose thickness a stage's fluxes would take below 0 (accumulate) */
     int *defer; /* the stage's static and boundary edges, whose fluxes wait for the hydrostatic modes */
-    size_t n_act_f, n_act_e, n_act_owned, n_prev_f, n_act_b;
+    size_t n_act_f, n_act_e, n_act_owned, n_prev_f, n_prev_owned, n_act_b;
+    int scan_all; /* the next build_active scans every face for h > 0 (the state was loaded) */
     double *a_save;
     double *lvl; /* ring level for the parallel active set (nt) */
     int active_fresh; /* the active set matches the state (built since the last change) */
@@ -322,6 +323,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     gf_surface *s = calloc(1, sizeof *s);
     if (!s)
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
+    s->scan_all = 1; /* (and after every load_state) */
     s->m = *mesh;
     s->c = *cfg;
     s->gmag = sqrt(dot3(cfg->g, cfg->g));
@@ -480,6 +482,7 @@ static gf_status load_state(gf_surface *s, const double *h, const double *mom, c
 {
     const size_t nf = s->m.n_faces;
     s->active_fresh = 0;
+    s->scan_all = 1;
     s->h_scale = 0.0;
     s->startup_pending = !exact && s->c.startup_levels > 0;
     for (size_t f = 0; f < nf; ++f) {
@@ -587,6 +590,33 @@ static size_t expand(gf_surface *s, size_t a, size_t b, size_t nr, unsigned st)
     return nr;
 }
 
+static int cmp_int(const void *a, const void *b)
+{
+    const int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sort the distinct face numbers v[0..n) increasingly: the unsorted tail
+ * after the longest increasing run is sorted and merged with it (tmp: n
+ * ints of scratch). */
+static void sort_faces(int *v, size_t n, int *tmp)
+{
+    size_t k = 1;
+    while (k < n && v[k - 1] < v[k])
+        ++k;
+    if (k >= n)
+        return;
+    qsort(v + k, n - k, sizeof *v, cmp_int);
+    size_t a = 0, b = k, o = 0;
+    while (a < k && b < n)
+        tmp[o++] = v[a] < v[b] ? v[a++] : v[b++];
+    while (a < k)
+        tmp[o++] = v[a++];
+    while (b < n)
+        tmp[o++] = v[b++];
+    memcpy(v, tmp, n * sizeof *v);
+}
+
 /* Active set: faces with h > 0 (owned and ghost) and two rings of
  * neighbours; their edges.  act_f lists owned faces first (n_act_owned).
  * In parallel the first ring is exchanged before the second is grown, so
@@ -597,11 +627,29 @@ static gf_status build_active(gf_surface *s)
     const size_t nt = s->nt, nf = s->m.n_faces;
     const unsigned st = ++s->stamp;
     size_t nr = 0;
-    for (size_t f = 0; f < nt; ++f)
-        if (s->h[f] > 0.0) {
-            s->mark_g[f] = st;
-            s->ring[nr++] = (int)f;
-        }
+    if (s->scan_all) {
+        for (size_t f = 0; f < nt; ++f)
+            if (s->h[f] > 0.0)
+                s->ring[nr++] = (int)f;
+        s->scan_all = 0;
+    } else {
+        /* A step changes only the owned active faces, and every other owned
+         * face is dry (h = 0, it would be active otherwise): the owned faces
+         * with h > 0 are among the previous set's, listed in increasing
+         * order as the full scan lists them (the previously wet ones are
+         * a sorted run, the few that became wet follow), so a step costs
+         * nothing on the dry part of the mesh.  Ghosts, which another rank
+         * updates, are all scanned. */
+        for (size_t i = 0; i < s->n_prev_owned; ++i)
+            if (s->h[s->prev_f[i]] > 0.0)
+                s->ring[nr++] = s->prev_f[i];
+        sort_faces(s->ring, nr, s->act_f);
+        for (size_t g = nf; g < nt; ++g)
+            if (s->h[g] > 0.0)
+                s->ring[nr++] = (int)g;
+    }
+    for (size_t i = 0; i < nr; ++i)
+        s->mark_g[s->ring[i]] = st;
     /* an inflow edge that brings material makes its face active */
     for (size_t i = 0; i < s->n_inflow; ++i) {
         const int e = s->inflow_edges[i], f = s->m.owner[e];
@@ -654,6 +702,7 @@ static gf_status build_active(gf_surface *s)
     }
     memcpy(s->prev_f, s->act_f, s->n_act_f * sizeof *s->prev_f);
     s->n_prev_f = s->n_act_f;
+    s->n_prev_owned = s->n_act_owned;
     s->n_act_e = 0;
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
