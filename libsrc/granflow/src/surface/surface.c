@@ -55,17 +55,16 @@
 #ifndef PF_DIST
 #define PF_DIST 8
 #endif
-/* prefetch the n doubles at p (n <= 24) */
+/* prefetch the n doubles at p, which starts a 64-byte line (the edge blocks
+ * of calloc_lines: frame, es, eacc): one prefetch per line */
 static inline void prefetch_block(const double *p, int n, int write)
 {
     if (write) {
         for (int k = 0; k < n; k += 8)
             __builtin_prefetch(p + k, 1);
-        __builtin_prefetch(p + n - 1, 1);
     } else {
         for (int k = 0; k < n; k += 8)
             __builtin_prefetch(p + k, 0);
-        __builtin_prefetch(p + n - 1, 0);
     }
 }
 
