@@ -1087,6 +1087,18 @@ static inline void transpose4(v4d r0, v4d r1, v4d r2, v4d r3, v4d *c)
     c[3] = __builtin_shuffle(t1, t3, (v4i){2, 3, 6, 7});
 }
 
+/* the frames (EF doubles) of four edges as 16 columns: FA[k] = (frame[k] of
+ * each edge), FB: [4..7], FC: [8..11], FD: [12..15] */
+static inline void frames4(const gf_surface *s, const int *q, v4d *FA, v4d *FB, v4d *FC, v4d *FD)
+{
+    const double *f0 = s->frame + EF * q[0], *f1 = s->frame + EF * q[1], *f2 = s->frame + EF * q[2],
+                 *f3 = s->frame + EF * q[3];
+    transpose4(vload(f0), vload(f1), vload(f2), vload(f3), FA);
+    transpose4(vload(f0 + 4), vload(f1 + 4), vload(f2 + 4), vload(f3 + 4), FB);
+    transpose4(vload(f0 + 8), vload(f1 + 8), vload(f2 + 8), vload(f3 + 8), FC);
+    transpose4(vload(f0 + 12), vload(f1 + 12), vload(f2 + 12), vload(f3 + 12), FD);
+}
+
 /* hll_speeds on four lanes: the same operations and cases, selected per
  * lane (both sides dry: 0, 0) */
 static inline void hll_speeds4(v4d hl, v4d ul, v4d cl, v4d hr, v4d ur, v4d cr, v4d *sl_out, v4d *sr_out)
@@ -1112,13 +1124,8 @@ static void edge_flux4(gf_surface *s, const int *q)
         const double *e0 = s->es + 8 * q[0], *e1 = s->es + 8 * q[1], *e2 = s->es + 8 * q[2], *e3 = s->es + 8 * q[3];
         transpose4(vload(e0), vload(e1), vload(e2), vload(e3), SL);
         transpose4(vload(e0 + 4), vload(e1 + 4), vload(e2 + 4), vload(e3 + 4), SR);
-        const double *f0 = s->frame + EF * q[0], *f1 = s->frame + EF * q[1], *f2 = s->frame + EF * q[2],
-                     *f3 = s->frame + EF * q[3];
-        transpose4(vload(f0), vload(f1), vload(f2), vload(f3), FA);
-        transpose4(vload(f0 + 4), vload(f1 + 4), vload(f2 + 4), vload(f3 + 4), FB);
-        transpose4(vload(f0 + 8), vload(f1 + 8), vload(f2 + 8), vload(f3 + 8), FC);
-        transpose4(vload(f0 + 12), vload(f1 + 12), vload(f2 + 12), vload(f3 + 12), FD);
     }
+    frames4(s, q, FA, FB, FC, FD);
     /* frame: nu_L = FA0..2, nu_R = FA3 FB0 FB1, nu = FB2 FB3 FC0, t = FC1..3, L PO PN = FD0..2 */
     const v4d nul0 = FA[0], nul1 = FA[1], nul2 = FA[2], nur0 = FA[3], nur1 = FB[0], nur2 = FB[1];
     const v4d nu0 = FB[2], nu1 = FB[3], nu2 = FC[0], t0 = FC[1], t1 = FC[2], t2 = FC[3];
@@ -1162,6 +1169,74 @@ static void edge_flux4(gf_surface *s, const int *q)
         memcpy(ea, &rows[k], sizeof rows[k]);
         memcpy(ea + 4, &rows[4 + k], sizeof rows[k]);
         s->fh[q[k]] = F0[k];
+    }
+}
+
+/* The static branch of edge_flux (gf_surface.sedge bit 0: an internal edge
+ * with both sides slow) for four edges at once, one per lane: the same
+ * operations in the same order (the upwind side, the pressures of each
+ * side, hydrostatic_pressure where a face is in the hydrostatic mode, every
+ * branch a selection per lane), so that each lane's results are those of
+ * edge_flux bit for bit.  At rest, and in deposits, these are most edges. */
+static inline v4d hydrostatic_pressure4(v4d ahf, v4d hf, v4d ahn, v4d hn, v4d dx, v4d dy, v4d dz, const double *g)
+{
+    const v4d zero = vsplat(0.0);
+    const v4d P = ahf * hf + vsplat(g[0]) * dx + vsplat(g[1]) * dy + vsplat(g[2]) * dz;
+    const v4i ok = (P > zero) & (ahn > zero);
+    const v4d heq = vsel(ok, P / vsel(ok, ahn, vsplat(1.0)), zero);
+    return vsplat(0.5) * ahf * hf * (hn - heq);
+}
+static void edge_static4(gf_surface *s, const double *H, const int *q)
+{
+    const gf_surface_mesh *m = &s->m;
+    v4d FA[4], FB[4], FC[4], FD[4];
+    frames4(s, q, FA, FB, FC, FD);
+    const v4d nul0 = FA[0], nul1 = FA[1], nul2 = FA[2], nur0 = FA[3], nur1 = FB[0], nur2 = FB[1];
+    const v4d nu0 = FB[2], nu1 = FB[3], nu2 = FC[0], t0 = FC[1], t1 = FC[2], t2 = FC[3];
+    const v4d L = FD[0], PO = FD[1], PN = FD[2];
+    const int o0 = m->owner[q[0]], o1 = m->owner[q[1]], o2 = m->owner[q[2]], o3 = m->owner[q[3]];
+    const int n0 = m->neighbour[q[0]], n1 = m->neighbour[q[1]], n2 = m->neighbour[q[2]], n3 = m->neighbour[q[3]];
+    const double *u = s->u, *a = s->a, *ah = s->ahyd, *x = m->centre;
+    const unsigned char *stat = s->stat;
+#define G4(arr, st, k, i0, i1, i2, i3) ((v4d){arr[st * i0 + k], arr[st * i1 + k], arr[st * i2 + k], arr[st * i3 + k]})
+    const v4d uo0 = G4(u, 3, 0, o0, o1, o2, o3), uo1 = G4(u, 3, 1, o0, o1, o2, o3), uo2 = G4(u, 3, 2, o0, o1, o2, o3);
+    const v4d un0 = G4(u, 3, 0, n0, n1, n2, n3), un1 = G4(u, 3, 1, n0, n1, n2, n3), un2 = G4(u, 3, 2, n0, n1, n2, n3);
+    const v4d Ho = G4(H, 1, 0, o0, o1, o2, o3), Hn = G4(H, 1, 0, n0, n1, n2, n3);
+    const v4d ao = G4(a, 1, 0, o0, o1, o2, o3), an = G4(a, 1, 0, n0, n1, n2, n3);
+    const v4d aho = G4(ah, 1, 0, o0, o1, o2, o3), ahn = G4(ah, 1, 0, n0, n1, n2, n3);
+    /* x_n - x_o, and x_o - x_n for the neighbour's side */
+    const v4d dx = G4(x, 3, 0, n0, n1, n2, n3) - G4(x, 3, 0, o0, o1, o2, o3);
+    const v4d dy = G4(x, 3, 1, n0, n1, n2, n3) - G4(x, 3, 1, o0, o1, o2, o3);
+    const v4d dz = G4(x, 3, 2, n0, n1, n2, n3) - G4(x, 3, 2, o0, o1, o2, o3);
+    const v4d mx = G4(x, 3, 0, o0, o1, o2, o3) - G4(x, 3, 0, n0, n1, n2, n3);
+    const v4d my = G4(x, 3, 1, o0, o1, o2, o3) - G4(x, 3, 1, n0, n1, n2, n3);
+    const v4d mz = G4(x, 3, 2, o0, o1, o2, o3) - G4(x, 3, 2, n0, n1, n2, n3);
+#undef G4
+    const v4i so = {stat[o0] ? -1 : 0, stat[o1] ? -1 : 0, stat[o2] ? -1 : 0, stat[o3] ? -1 : 0};
+    const v4i sn = {stat[n0] ? -1 : 0, stat[n1] ? -1 : 0, stat[n2] ? -1 : 0, stat[n3] ? -1 : 0};
+    const v4d half = vsplat(0.5);
+    const v4d vo = uo0 * nul0 + uo1 * nul1 + uo2 * nul2, vn = un0 * nur0 + un1 * nur1 + un2 * nur2;
+    const v4d vm = half * (vo + vn);
+    const v4i upo = vm >= vsplat(0.0); /* the upwind side is the owner */
+    const v4d unu = vsel(upo, vo, vn);
+    const v4d ut = vsel(upo, uo0, un0) * t0 + vsel(upo, uo1, un1) * t1 + vsel(upo, uo2, un2) * t2;
+    const v4d po = half * ao * Ho * Hn, pn = half * an * Hn * Ho;
+    const v4d qo = vsel(so, hydrostatic_pressure4(aho, Ho, ahn, Hn, dx, dy, dz, s->c.g), po);
+    const v4d qn = vsel(sn, hydrostatic_pressure4(ahn, Hn, aho, Ho, mx, my, mz, s->c.g), pn);
+    const v4d fh = vsel(upo, Ho, Hn) * vm;
+    const v4d adv0 = fh * (unu * nu0 + ut * t0), adv1 = fh * (unu * nu1 + ut * t1), adv2 = fh * (unu * nu2 + ut * t2);
+    const v4d out[8] = {L * fh, po * PO, pn * PN, L * (adv0 + qo * nu0), L * (adv1 + qo * nu1),
+                        L * (adv2 + qo * nu2), vsplat(1.0), vsplat(0.0)};
+    const v4d mn0 = L * (adv0 + qn * nu0), mn1 = L * (adv1 + qn * nu1), mn2 = L * (adv2 + qn * nu2);
+    v4d rows[8];
+    transpose4(out[0], out[1], out[2], out[3], rows);
+    transpose4(out[4], out[5], out[6], out[7], rows + 4);
+    for (int k = 0; k < 4; ++k) {
+        double *ea = s->eacc + EA * q[k], *fn = s->efmn + 3 * q[k];
+        memcpy(ea, &rows[k], sizeof rows[k]);
+        memcpy(ea + 4, &rows[4 + k], sizeof rows[k]);
+        s->fh[q[k]] = fh[k];
+        fn[0] = mn0[k], fn[1] = mn1[k], fn[2] = mn2[k];
     }
 }
 
@@ -1338,8 +1413,27 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     for (int k = 0; k < nq; ++k)
         edge_flux(s, H, quad[k], order2);
 #endif
+#ifdef __AVX__
+    /* the deferred internal edges are static: four at a time */
+    nq = 0;
+    for (size_t i = 0; i < nd; ++i) {
+        const int e = s->defer[i];
+        if (m->kind[e] != GF_EDGE_INTERNAL) {
+            edge_flux(s, H, e, order2);
+            continue;
+        }
+        quad[nq++] = e;
+        if (nq == 4) {
+            edge_static4(s, H, quad);
+            nq = 0;
+        }
+    }
+    for (int k = 0; k < nq; ++k)
+        edge_flux(s, H, quad[k], order2);
+#else
     for (size_t i = 0; i < nd; ++i)
         edge_flux(s, H, s->defer[i], order2);
+#endif
     /* Positivity: a face whose thickness would fall below 0 has its edges
      * recomputed at first order (up to 3 passes), one that still would
      * (or any at order 1) fails the stage, and the step is halved.  In
