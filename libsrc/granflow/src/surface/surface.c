@@ -858,6 +858,16 @@ static void gradients(gf_surface *s, const double *H)
                 prefetch_block(s->es + 8 * s->fe[j], 8, 1);
         }
         const size_t j0 = s->fe_start[f], ne = s->fe_start[f + 1] - j0;
+        /* A dry face (h = +0: its velocity is 0, and no neighbour is below
+         * it) reconstructs 0 at every edge: where its gradient is not 0 some
+         * edge's slope d is negative, and Barth–Jespersen's room there,
+         * min(h) - h = 0, makes alpha 0.  Its states are written as that
+         * (the rings of the active set; not for the halo's gradients). */
+        if (H[f] == 0.0 && !signbit(H[f]) && !s->pface[f]) {
+            for (size_t j = j0; j < j0 + ne; ++j)
+                memset(s->es + s->fs_es[j], 0, 4 * sizeof *s->es);
+            continue;
+        }
         if (ne == 4)
             gradient_face(s, H, f, j0, 4);
         else
