@@ -22,7 +22,9 @@
  * three dry-front problems also run with the start-up refinement
  * (startup_levels = 3: kinetic 3 at orders 1 and 2 and RKDG P0-P2, "+s3";
  * 5: RKDG P1, P2 and kinetic 3 order 2, "+s5"); its finer grids' CPU time is
- * included, their steps are not counted as cell updates.
+ * included, their steps are not counted as cell updates.  RKDG P1 and P2 also on
+ * the moving mesh (moving_mesh = 1, "+m"; with 3 and 5 start-up levels,
+ * "+m+s3", "+m+s5"), whose L1 error adds the exact depth beyond its ends.
  * Prints: problem, scheme, N, L1 error, CPU seconds, cell updates per second
  * (cells x steps / CPU s; DG counts a three-stage step once), front error in
  * cells (nan without a dry front).  CSV on stdout.
@@ -30,6 +32,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "granflow/granflow.h"
@@ -74,15 +77,17 @@ static void cap_init(double x, void *c, double *h, double *u)
  * variants run on the dry-front problems only */
 struct variant {
     const char *name;
-    int kinetic, scheme_or_degree, order, levels;
+    int kinetic, scheme_or_degree, order, levels, moving;
 };
 static const struct variant variants[] = {
-    {"kinetic1", 1, 1, 1, 0},         {"kinetic2", 1, 2, 1, 0},         {"kinetic3", 1, 3, 1, 0},
-    {"rkdgP0", 0, 0, 0, 0},           {"rkdgP1", 0, 1, 0, 0},           {"rkdgP2", 0, 2, 0, 0},
-    {"kinetic1o2", 1, 1, 2, 0},       {"kinetic3o2", 1, 3, 2, 0},       {"kinetic3+s3", 1, 3, 1, 3},
-    {"rkdgP0+s3", 0, 0, 0, 3},        {"rkdgP1+s3", 0, 1, 0, 3},        {"rkdgP2+s3", 0, 2, 0, 3},
-    {"kinetic3o2+s3", 1, 3, 2, 3},    {"rkdgP1+s5", 0, 1, 0, 5},        {"rkdgP2+s5", 0, 2, 0, 5},
-    {"kinetic3o2+s5", 1, 3, 2, 5},
+    {"kinetic1", 1, 1, 1, 0, 0},         {"kinetic2", 1, 2, 1, 0, 0},         {"kinetic3", 1, 3, 1, 0, 0},
+    {"rkdgP0", 0, 0, 0, 0, 0},           {"rkdgP1", 0, 1, 0, 0, 0},           {"rkdgP2", 0, 2, 0, 0, 0},
+    {"kinetic1o2", 1, 1, 2, 0, 0},       {"kinetic3o2", 1, 3, 2, 0, 0},       {"kinetic3+s3", 1, 3, 1, 3, 0},
+    {"rkdgP0+s3", 0, 0, 0, 3, 0},        {"rkdgP1+s3", 0, 1, 0, 3, 0},        {"rkdgP2+s3", 0, 2, 0, 3, 0},
+    {"kinetic3o2+s3", 1, 3, 2, 3, 0},    {"rkdgP1+s5", 0, 1, 0, 5, 0},        {"rkdgP2+s5", 0, 2, 0, 5, 0},
+    {"kinetic3o2+s5", 1, 3, 2, 5, 0},    {"rkdgP1+m", 0, 1, 0, 0, 1},      {"rkdgP2+m", 0, 2, 0, 0, 1},
+    {"rkdgP1+m+s3", 0, 1, 0, 3, 1},   {"rkdgP2+m+s3", 0, 2, 0, 3, 1},   {"rkdgP1+m+s5", 0, 1, 0, 5, 1},
+    {"rkdgP2+m+s5", 0, 2, 0, 5, 1},
 };
 #define NVARIANTS ((int)(sizeof variants / sizeof variants[0]))
 
@@ -127,6 +132,7 @@ static void configure(gf_sh1d_config *c, int problem, int variant, size_t n)
     else
         c->degree = v->scheme_or_degree;
     c->startup_levels = v->levels;
+    c->moving_mesh = v->moving;
 }
 
 static gf_sh1d *run(int problem, int variant, size_t n, double *cpu)
@@ -150,10 +156,16 @@ static gf_sh1d *run(int problem, int variant, size_t n, double *cpu)
     return s;
 }
 
-/* last crossing of h = 1e-3 by the cell means, linear between centres */
+/* last crossing of h = 1e-3 by the cell means, linear between centres (on
+ * the moving mesh, between the last centre and the front node, h = 0 there) */
 static double front_of(const gf_sh1d *s, const double *h)
 {
-    for (size_t i = gf_sh1d_n_cells(s) - 1; i > 0; --i)
+    const size_t n = gf_sh1d_n_cells(s);
+    double lo, hi;
+    gf_sh1d_extent(s, &lo, &hi);
+    if (h[n - 1] >= 1e-3)
+        return gf_sh1d_cell_centre(s, n - 1) + (h[n - 1] - 1e-3) / h[n - 1] * (hi - gf_sh1d_cell_centre(s, n - 1));
+    for (size_t i = n - 1; i > 0; --i)
         if (h[i - 1] >= 1e-3 && h[i] < 1e-3)
             return gf_sh1d_cell_centre(s, i - 1) + (h[i - 1] - 1e-3) / (h[i - 1] - h[i]) * gf_sh1d_dx(s);
     return NAN;
@@ -184,6 +196,23 @@ static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *
         }
         e += fabs(h[i] - mean) * dx;
     }
+    /* the moving mesh: the exact depth beyond its ends */
+    const gf_sh1d_config *c = gf_sh1d_get_config(s);
+    double lo, hi;
+    gf_sh1d_extent(s, &lo, &hi);
+    for (int side = 0; side < 2; ++side) {
+        const double x0 = side ? hi : c->x_min, x1 = side ? c->x_max : lo;
+        const int ns = 20000;
+        for (int k = 0; k < ns && x1 > x0; ++k) {
+            const double x = x0 + (x1 - x0) * (k + 0.5) / ns;
+            double he, ue;
+            if (problem == CAP)
+                gf_spreading_cap_sample(&cap, x, t, &he, &ue);
+            else
+                gf_riemann_sample(problem == INCLINE ? incline : ritter, x - 0.5 * a * t * t, t, &he, &ue);
+            e += he * (x1 - x0) / ns;
+        }
+    }
     double xe;
     if (problem == CAP) {
         double lam, dlam;
@@ -211,7 +240,12 @@ int main(void)
     for (int problem = 0; problem < NPROBLEMS; ++problem)
         for (int v = 0; v < NVARIANTS; ++v)
             for (size_t n = 50; n <= 1600; n *= 2) {
-                if (variants[v].levels > 0 && !DRY_FRONT(problem))
+                if ((variants[v].levels > 0 || variants[v].moving) && !DRY_FRONT(problem))
+                    continue;
+                const char *only = getenv("GF_BENCH1D_ONLY"); /* "problem/variant", for a quick look */
+                char key[64];
+                snprintf(key, sizeof key, "%s/%s", problem_names[problem], variants[v].name);
+                if (only && !strstr(key, only))
                     continue;
                 /* repeat short runs so that the CPU time is measurable */
                 double total = 0;

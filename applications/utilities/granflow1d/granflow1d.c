@@ -28,6 +28,9 @@
  *                 paper's eq. 13 with gamma), gamma (0.5), tvb_m (0 for
  *                 minmod, 1 for moment),
  *                 velocity_limiter (on | off), h_eps, h_semi,
+ *                 moving_mesh (off | on: rkdg's front tracking, the cells span
+ *                 the wet interval and its dry-front nodes move with the fronts;
+ *                 the CSV then has a row per cell of that interval),
  *                 startup_levels (0; 1..5: the first phase on grids 2^L..2
  *                 times finer, for discontinuous initial data such as a dam
  *                 break on a dry bed); the other method's keys are checked and
@@ -422,7 +425,8 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
      * case file can switch methods on the command line), and named on
      * stderr as not acting */
     {
-        static const char *const dg_keys[] = {"degree", "limiter", "gamma", "tvb_m", "velocity_limiter"};
+        static const char *const dg_keys[] = {"degree", "limiter", "gamma", "tvb_m", "velocity_limiter",
+                                               "moving_mesh"};
         static const char *const kin_keys[] = {"scheme", "kinetic_order"};
         const int kinetic = cs->method == gf_sh1d_kinetic;
         const char *const *keys = kinetic ? dg_keys : kin_keys;
@@ -446,6 +450,9 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     c.h_eps = get_num(&d, "solver", "h_eps", 1e-10, 1e-300, 1.0);
     c.h_semi = get_num(&d, "solver", "h_semi", 1e-6, 1e-300, 1.0);
     c.startup_levels = (int)get_int(&d, "solver", "startup_levels", 0, 0, 5);
+    c.moving_mesh = get_choice(&d, "solver", "moving_mesh", "off", onoff);
+    if (cs->method == gf_sh1d_kinetic)
+        c.moving_mesh = 0; /* named above as not acting */
 
     /* output */
     double *times = cs->times;

@@ -106,6 +106,21 @@ typedef struct gf_sh1d_config {
                                 break on a dry bed) are resolved instead of smeared
                                 over a few cells, whose error a dry front keeps (issue
                                 11).  It is taken by the first gf_sh1d_step. */
+    /* RKDG */
+    int moving_mesh;         /* 0 (default): the fixed grid of n_cells on [x_min, x_max].
+                                1: front tracking.  The n_cells cells span the wet interval
+                                of the initial data; an end of it inside the domain is a
+                                dry front, whose node moves at the speed of the wet/dry
+                                Riemann fan's edge, u + 2 sqrt(beta h) of the end cell's
+                                trace (u - 2 sqrt(beta h) at a left front), and stands while
+                                friction holds that cell at rest; the nodes between move in
+                                proportion.  The equations in ALE form: fluxes relative to
+                                the mesh velocity, none through a front node (mass kept to
+                                round-off).  A front's kink or jump then sits on a node
+                                instead of inside a cell.  The wet interval must stay inside
+                                the domain (an error names the front that reaches its end);
+                                not with periodic boundaries.  With startup_levels the finer
+                                grids span the same interval, and each hands its nodes on. */
 } gf_sh1d_config;
 
 /* Defaults: k = 2 with the moment limiter and the velocity bound, the rkdg
@@ -161,6 +176,10 @@ size_t gf_sh1d_n_cells(const gf_sh1d *s);
 double gf_sh1d_dx(const gf_sh1d *s);
 double gf_sh1d_cell_centre(const gf_sh1d *s, size_t i);
 const gf_sh1d_config *gf_sh1d_get_config(const gf_sh1d *s);
+
+/* The grid's ends: [x_min, x_max] on the fixed grid; the moving mesh's current
+ * nodes (moving_mesh = 1).  Outside them the solution is dry. */
+void gf_sh1d_extent(const gf_sh1d *s, double *x_lo, double *x_hi);
 
 /* Cell means of h and u (u = q/h, 0 where dry); arrays of n_cells. */
 void gf_sh1d_means(const gf_sh1d *s, double *h, double *u);

@@ -21,7 +21,8 @@ double gf_sh1d_l1_difference(const gf_sh1d *a, const gf_sh1d *b);
 
 /* L1 error of the cell-mean depths against the exact Riemann solution at
  * time t: sum_i |h_i - mean of the exact h over cell i| dx, the exact mean
- * from 16 midpoint samples per cell. */
+ * from 16 midpoint samples per cell; on the moving mesh (moving_mesh) plus
+ * the exact depth beyond its ends, where it is dry. */
 double gf_sh1d_l1_error_riemann(const gf_sh1d *s, const gf_riemann *exact, double t);
 
 #ifdef __cplusplus

@@ -28,6 +28,7 @@ typedef struct dg {
     unsigned char *moving;      /* M_j, nc */
     unsigned char *stopped;     /* stopped by friction in the last Euler stage, nc */
     unsigned char *moving0;     /* M_j at the start of a step, to repeat it, nc */
+    unsigned char *stopped0;    /* the same for stopped */
     /* the bed (fixed): cos and sin of zeta and the curvature kappa at the
      * Gauss points (nc * ng; ghost cells flat), cos zeta at the interfaces */
     double *czg, *szg, *kg;
@@ -36,6 +37,12 @@ typedef struct dg {
     /* the cells a step computes, lo..hi (gf_sh1d_active_range); outside them every
      * mode is exactly 0 and stays so */
     size_t lo, hi;
+    /* the moving mesh (cfg.moving_mesh): which ends are dry fronts (their
+     * node moves), the node velocities of the state rhs saw last, and the
+     * nodes of the solution and of the stage buffers h0/q0 and h1/q1 */
+    int ale, free_l, free_r;
+    double va, vb;
+    double xa, xb, xa0, xb0, xa1, xb1;
 } dg;
 
 /* min and max of two numbers (no NaN here): inline, where fmin and fmax
@@ -58,6 +65,35 @@ static void dg_free(gf_sh1d *s)
     free(d->moving);
     free(d);
     s->impl = NULL;
+}
+
+/* The bed at the Gauss points and interfaces of the grid (ghost cells flat). */
+static void bed_at_points(const gf_sh1d *s, dg *d)
+{
+    const size_t n = s->n, G = (size_t)d->ng;
+    for (size_t c = 0; c < d->nc; ++c)
+        for (size_t g = 0; g < G; ++g) {
+            double zeta = 0.0; /* ghost cells: flat */
+            if (c >= 1 && c <= n)
+                gf_sh1d_bed(s, gf_sh1d_cell_centre(s, c - 1) + 0.5 * s->dx * d->xg[g], &zeta, &d->kg[c * G + g]);
+            d->czg[c * G + g] = cos(zeta);
+            d->szg[c * G + g] = sin(zeta);
+        }
+    for (size_t f = 0; f <= n; ++f) {
+        double zeta, kap;
+        gf_sh1d_bed(s, s->x0 + (double)f * s->dx, &zeta, &kap);
+        d->czf[f] = cos(zeta);
+    }
+}
+
+/* The moving mesh's nodes xa, xb: the grid of s (and the bed's values at
+ * its points, where the bed is not a plane). */
+static void set_geometry(gf_sh1d *s, dg *d, double xa, double xb)
+{
+    s->x0 = xa;
+    s->dx = (xb - xa) / (double)s->n;
+    if (s->cfg.topo)
+        bed_at_points(s, d);
 }
 
 static gf_status dg_init(gf_sh1d *s)
@@ -86,7 +122,7 @@ static gf_status dg_init(gf_sh1d *s)
     d->nc = nc;
     const size_t total = 10 * nc * M + 3 * nc + 3 * nc * G + 3 * (n + 1);
     double *blk = calloc(total, sizeof *blk);
-    unsigned char *flags = calloc(3 * nc, 1);
+    unsigned char *flags = calloc(4 * nc, 1);
     if (!blk || !flags) {
         free(blk);
         free(flags);
@@ -116,21 +152,12 @@ static gf_status dg_init(gf_sh1d *s)
     d->moving = flags;
     d->stopped = flags + nc;
     d->moving0 = flags + 2 * nc;
+    d->stopped0 = flags + 3 * nc;
     s->impl = d;
-
-    for (size_t c = 0; c < nc; ++c)
-        for (size_t g = 0; g < G; ++g) {
-            double zeta = 0.0; /* ghost cells: flat */
-            if (c >= 1 && c <= n)
-                gf_sh1d_bed(s, gf_sh1d_cell_centre(s, c - 1) + 0.5 * s->dx * d->xg[g], &zeta, &d->kg[c * G + g]);
-            d->czg[c * G + g] = cos(zeta);
-            d->szg[c * G + g] = sin(zeta);
-        }
-    for (size_t f = 0; f <= n; ++f) {
-        double zeta, kap;
-        gf_sh1d_bed(s, s->cfg.x_min + (double)f * s->dx, &zeta, &kap);
-        d->czf[f] = cos(zeta);
-    }
+    d->ale = s->cfg.moving_mesh;
+    d->xa = s->x0;
+    d->xb = s->x0 + (double)n * s->dx;
+    bed_at_points(s, d);
     for (size_t c = 0; c < nc; ++c)
         d->k[c] = 1.0;
     static const double w_gl[3] = {1.0, 0.5, 1.0 / 6.0};
@@ -147,6 +174,32 @@ static void fill_ghosts(const gf_sh1d *s, dg *d, double *h, double *q)
         const size_t gc = side == 0 ? 0 : n + 1;
         const size_t in = side == 0 ? 1 : n;
         const size_t per = side == 0 ? n : 1;
+        if (d->ale && (side == 0 ? d->free_l : d->free_r)) {
+            /* beyond a dry front node: the end cell's own polynomial, extended
+             * (P(xi -/+ 2) in the ghost's xi), so that the limiters see no jump
+             * on the dry side, where no flux passes */
+            const double sg = side == 0 ? -1.0 : 1.0;
+            const double *hi = &h[in * M], *qi = &q[in * M];
+            for (int v = 0; v < 2; ++v) {
+                const double *u = v ? qi : hi;
+                double *o = v ? &q[gc * M] : &h[gc * M];
+                double e[MAXM] = {u[0], 0.0, 0.0};
+                if (M > 1) {
+                    e[0] += 2.0 * sg * u[1];
+                    e[1] = u[1];
+                }
+                if (M > 2) {
+                    e[0] += 6.0 * u[2];
+                    e[1] += 6.0 * sg * u[2];
+                    e[2] = u[2];
+                }
+                for (size_t m = 0; m < M; ++m)
+                    o[m] = e[m];
+            }
+            d->moving[gc] = d->moving[in];
+            d->k[gc] = d->k[in];
+            continue;
+        }
         for (size_t m = 0; m < M; ++m) {
             const double sg = (m % 2) ? -1.0 : 1.0;
             if (bc == GF_BC_PERIODIC) {
@@ -201,8 +254,86 @@ static void update_k(const gf_sh1d *s, dg *d, const double *h, const double *q)
     const size_t M = (size_t)d->m;
     for (size_t c = d->lo - 1; c <= d->hi + 1; ++c)
         d->ubar[c] = gf_sh1d_velocity(s, h[c * M], q[c * M]);
-    for (size_t c = d->lo; c <= d->hi; ++c)
-        d->k[c] = gf_earth_pressure_k(&s->cfg.earth_pressure, d->ubar[c + 1] - d->ubar[c - 1]);
+    for (size_t c = d->lo; c <= d->hi; ++c) {
+        /* next to a front node the one-sided difference (the ghost beyond it
+         * is the end cell's polynomial extended, whose velocity means nothing) */
+        const size_t r = d->ale && d->free_r && c == s->n ? c : c + 1;
+        const size_t l = d->ale && d->free_l && c == 1 ? c : c - 1;
+        d->k[c] = gf_earth_pressure_k(&s->cfg.earth_pressure, d->ubar[r] - d->ubar[l]);
+    }
+}
+
+/* The velocity at a front node: of the linear velocity u = a + b xi whose
+ * h u has the cell's q moments 0 and 1 (int h u P_m = int q P_m, m = 0, 1),
+ * at xi = +1 (right) or -1 (left).  Exact for a linear velocity whatever the
+ * depth's shape (the cap's edge, Ritter's front, where h vanishes at the node
+ * and q/h there means nothing); the mean velocity where the depth's moments
+ * leave no second unknown (P0, or h nearly a point mass). */
+static double front_velocity(const gf_sh1d *s, const dg *d, const double *h, const double *q, size_t c, double side)
+{
+    const int M = d->m;
+    const double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
+    const double ubar = gf_sh1d_velocity(s, hc[0], qc[0]);
+    if (M < 2)
+        return ubar;
+    /* int h, int xi h, int xi^2 h over [-1, 1]; int q, int xi q */
+    const double H0 = 2.0 * hc[0], H1 = 2.0 / 3.0 * hc[1], H2 = 2.0 / 3.0 * hc[0] + (M > 2 ? 4.0 / 15.0 * hc[2] : 0.0);
+    const double Q0 = 2.0 * qc[0], Q1 = 2.0 / 3.0 * qc[1];
+    const double det = H0 * H2 - H1 * H1;
+    if (!(det > 1e-12 * H0 * H2))
+        return ubar;
+    const double a = (Q0 * H2 - Q1 * H1) / det, b = (H0 * Q1 - H1 * Q0) / det;
+    return a + side * b;
+}
+
+/* Bounds no front outruns on the moving mesh: the largest Riemann invariant
+ * u + 2 sqrt(beta h) of the means of the wet cells between the front cells
+ * (rmax), the smallest u - 2 sqrt(beta h) (rmin).  They keep a front cell's
+ * thin, poorly resolved layer from accelerating itself and its node (the
+ * velocity bound and node_velocities); +-HUGE_VAL where no cell is wet. */
+static void invariant_bounds(const gf_sh1d *s, const dg *d, const double *h, const double *q, double *rmin,
+                             double *rmax)
+{
+    const size_t M = (size_t)d->m;
+    *rmax = -HUGE_VAL;
+    *rmin = HUGE_VAL;
+    const size_t lo = d->free_l && d->lo == 1 ? 2 : d->lo, hi = d->free_r && d->hi == s->n ? s->n - 1 : d->hi;
+    for (size_t c = lo; c <= hi; ++c)
+        if (h[c * M] >= s->cfg.h_semi) {
+            const double u = q[c * M] / h[c * M];
+            const double c2 = 2.0 * sqrt(gf_sh_beta_c(s->cfg.epsilon, d->k[c], d->czg[c * (size_t)d->ng]) * h[c * M]);
+            *rmax = dmax(*rmax, u + c2);
+            *rmin = dmin(*rmin, u - c2);
+        }
+    if (*rmax == -HUGE_VAL) {
+        *rmax = HUGE_VAL;
+        *rmin = -HUGE_VAL;
+    }
+}
+
+/* The moving mesh's node velocities (cfg.moving_mesh) for the state h, q:
+ * at a front, the edge of the wet/dry Riemann fan at the node, u + 2 sqrt(beta
+ * h) (right) or u - 2 sqrt(beta h) (left), h the end cell's trace and u
+ * front_velocity's, so that no wave leaves the grid and no flux passes the
+ * node; 0 while friction holds the end cell at rest (stopped) or where it is
+ * not wet (h < h_semi); 0 at an end on the domain's boundary. */
+static void node_velocities(const gf_sh1d *s, const dg *d, const double *h, const double *q, double *va,
+                            double *vb)
+{
+    const size_t n = s->n, M = (size_t)d->m;
+    *va = *vb = 0.0;
+    double rmin, rmax;
+    invariant_bounds(s, d, h, q, &rmin, &rmax);
+    if (d->free_r && h[n * M] >= s->cfg.h_semi && !d->stopped[n]) {
+        const double hb = dmax(right_value(&h[n * M], d->m), 0.0);
+        *vb = front_velocity(s, d, h, q, n, 1.0) + 2.0 * sqrt(gf_sh_beta_c(s->cfg.epsilon, d->k[n], d->czf[n]) * hb);
+        *vb = dmin(*vb, rmax);
+    }
+    if (d->free_l && h[M] >= s->cfg.h_semi && !d->stopped[1]) {
+        const double hb = dmax(left_value(&h[M], d->m), 0.0);
+        *va = front_velocity(s, d, h, q, 1, -1.0) - 2.0 * sqrt(gf_sh_beta_c(s->cfg.epsilon, d->k[1], d->czf[0]) * hb);
+        *va = dmax(*va, rmin);
+    }
 }
 
 /* Interface flux: the rkdg paper's Lax–Friedrichs flux (eq. 9, its mass
@@ -222,34 +353,53 @@ static void update_k(const gf_sh1d *s, dg *d, const double *h, const double *q)
 
 /* Right-hand side without friction (rh, rq), the friction term of every q
  * mode (fm) and the friction capacity of the mean (cap), per unit time. */
+/* The moving mesh (ALE = 1; not in the papers: the arbitrary
+ * Lagrangian-Eulerian form of the weak form, rkdg eq. 12, on cells that move
+ * with the nodes): every flux is relative to the mesh velocity w, linear
+ * between the node velocities va and vb (F - w U, waves u - w +- c), and the
+ * modes' equations are those of the cell's content, d(dx U_m)/dt
+ * (euler_stage); no flux passes a front node. */
 static inline __attribute__((always_inline)) void rhs_m(const gf_sh1d *s, dg *d, double *h, double *q,
-                                                        const int M)
+                                                        const int M, const int ALE)
 {
     const int G = M; /* d->ng */
     const double eps = s->cfg.epsilon, grav = s->cfg.g, dx = s->dx;
     fill_ghosts(s, d, h, q);
     update_k(s, d, h, q);
     fill_ghosts(s, d, h, q);
+    double va = 0.0, dv = 0.0;
+    if (ALE) {
+        node_velocities(s, d, h, q, &d->va, &d->vb);
+        va = d->va;
+        dv = (d->vb - d->va) / (double)s->n;
+    }
 
     for (size_t f = d->lo - 1; f <= d->hi; ++f) { /* interface between cells f and f+1 */
+        if (ALE && ((f == 0 && d->free_l) || (f == s->n && d->free_r))) {
+            d->fh[f] = d->fqx[f] = 0.0; /* a front node: the edge of the fan, h = 0 */
+            continue;
+        }
         double hl, ul, hr, ur;
         point_state(s, right_value(&h[f * M], M), right_value(&q[f * M], M), &hl, &ul);
         point_state(s, left_value(&h[(f + 1) * M], M), left_value(&q[(f + 1) * M], M), &hr, &ur);
+        const double w = ALE ? va + dv * (double)f : 0.0;
+        const double vl = ALE ? ul - w : ul, vr = ALE ? ur - w : ur; /* relative to the mesh */
         const double bl = gf_sh_beta_c(eps, d->k[f], d->czf[f]), br = gf_sh_beta_c(eps, d->k[f + 1], d->czf[f]);
         const double cl = sqrt(bl * hl), cr = sqrt(br * hr);
-        const double al = fabs(ul) + cl, ar = fabs(ur) + cr;
+        const double al = fabs(vl) + cl, ar = fabs(vr) + cr;
         const double alpha = al > ar ? al : ar;
         const double eta = (d->moving[f] || d->moving[f + 1]) ? 1.0 : 0.0;
         const double ql = hl * ul, qr = hr * ur;
-        const double fl1 = ql * ul + 0.5 * bl * hl * hl, fr1 = qr * ur + 0.5 * br * hr * hr;
-        if (hl > 0.0 && ul > SUPERCRITICAL * cl && (hr <= 0.0 || ur > SUPERCRITICAL * cr)) {
-            d->fh[f] = ql; /* every wave moves right: the exact flux is the upwind one */
+        const double fl1 = ql * vl + 0.5 * bl * hl * hl, fr1 = qr * vr + 0.5 * br * hr * hr;
+        const double gl = ALE ? hl * vl : ql, gr = ALE ? hr * vr : qr; /* mass fluxes */
+        if (hl > 0.0 && vl > SUPERCRITICAL * cl && (hr <= 0.0 || vr > SUPERCRITICAL * cr)) {
+            d->fh[f] = gl; /* every wave moves right: the exact flux is the upwind one */
             d->fqx[f] = fl1;
-        } else if (hr > 0.0 && -ur > SUPERCRITICAL * cr && (hl <= 0.0 || -ul > SUPERCRITICAL * cl)) {
-            d->fh[f] = qr;
+        } else if (hr > 0.0 && -vr > SUPERCRITICAL * cr && (hl <= 0.0 || -vl > SUPERCRITICAL * cl)) {
+            d->fh[f] = gr;
             d->fqx[f] = fr1;
         } else {
-            d->fh[f] = 0.5 * (ql + qr) - 0.5 * eta * alpha * (hr - hl); /* eq. 9 with eta */
+            d->fh[f] = 0.5 * (gl + gr) - 0.5 * eta * alpha * (hr - hl); /* eq. 9 with eta */
             d->fqx[f] = 0.5 * (fl1 + fr1) - 0.5 * alpha * (qr - ql);
         }
     }
@@ -262,7 +412,8 @@ static inline __attribute__((always_inline)) void rhs_m(const gf_sh1d *s, dg *d,
             double hp, up;
             point_state(s, poly(hc, M, d->xg[g]), poly(qc, M, d->xg[g]), &hp, &up);
             const double beta = gf_sh_beta_c(eps, d->k[c], cz);
-            const double f1 = hp * up, f2 = hp * up * up + 0.5 * beta * hp * hp;
+            const double vp = ALE ? up - (va + dv * ((double)(c - 1) + 0.5 * (1.0 + d->xg[g]))) : up;
+            const double f1 = hp * vp, f2 = hp * up * vp + 0.5 * beta * hp * hp;
             const double src = hp * grav * sz;
             const double tau = gf_sh1d_friction_c(s, hp, up, cz, kap);
             const double w = d->wg[g];
@@ -289,11 +440,18 @@ static inline __attribute__((always_inline)) void rhs_m(const gf_sh1d *s, dg *d,
  * and Gauss points unroll (the same operations in the same order) */
 static void rhs(const gf_sh1d *s, dg *d, double *h, double *q)
 {
-    switch (d->m) {
-    case 1: rhs_m(s, d, h, q, 1); break;
-    case 2: rhs_m(s, d, h, q, 2); break;
-    default: rhs_m(s, d, h, q, 3); break;
-    }
+    if (d->ale)
+        switch (d->m) {
+        case 1: rhs_m(s, d, h, q, 1, 1); break;
+        case 2: rhs_m(s, d, h, q, 2, 1); break;
+        default: rhs_m(s, d, h, q, 3, 1); break;
+        }
+    else
+        switch (d->m) {
+        case 1: rhs_m(s, d, h, q, 1, 0); break;
+        case 2: rhs_m(s, d, h, q, 2, 0); break;
+        default: rhs_m(s, d, h, q, 3, 0); break;
+        }
 }
 
 /* TVB-modified minmod: the first argument unchanged when small (M dx^2) */
@@ -368,17 +526,35 @@ static inline __attribute__((always_inline)) void limit_velocity(const gf_sh1d *
                                                                  const int M)
 {
     const double hs = s->cfg.h_semi;
+    double rmin = -HUGE_VAL, rmax = HUGE_VAL;
+    if (d->ale)
+        invariant_bounds(s, d, h, q, &rmin, &rmax);
     for (size_t c = d->lo; c <= d->hi; ++c) {
         double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
         if (hc[0] < hs)
             continue;
         const double ub = d->ubar[c];
         double lo = ub, hi = ub;
+        /* the moving mesh's end cell at a front (-1 left, +1 right, 0 not):
+         * beyond its node is no neighbour, and the depth vanishes at the node,
+         * where q/h means nothing; its range is the inner neighbour's mean and
+         * the two means extrapolated one cell on, 2 u_c - u_in, within
+         * invariant_bounds (a velocity that grows towards the front is not an
+         * overshoot), and the node is not tested */
+        const int front = !d->ale ? 0 : (c == s->n && d->free_r) ? 1 : (c == 1 && d->free_l) ? -1 : 0;
         for (size_t nb = c - 1; nb <= c + 1; nb += 2)
-            if (h[nb * (size_t)M] >= hs) {
+            if (h[nb * (size_t)M] >= hs && !(front && (nb == 0 || nb == s->n + 1))) {
                 lo = dmin(lo, d->ubar[nb]);
                 hi = dmax(hi, d->ubar[nb]);
             }
+        if (front) {
+            const size_t in = front > 0 ? c - 1 : c + 1;
+            if (h[in * (size_t)M] >= hs) {
+                const double uf = dmax(dmin(2.0 * ub - d->ubar[in], rmax), rmin);
+                lo = dmin(lo, uf);
+                hi = dmax(hi, uf);
+            }
+        }
         /* a tolerance far above round-off and far below any physical velocity
          * difference keeps the decision continuous at velocity extrema (left and
          * right mirror images are limited alike) */
@@ -387,6 +563,8 @@ static inline __attribute__((always_inline)) void limit_velocity(const gf_sh1d *
         hi += tol;
         double theta = 1.0;
         for (int p = -2; p < M && theta > 0.0; ++p) {
+            if ((front == -1 && p == -2) || (front == 1 && p == -1))
+                continue;
             const double x = p == -2 ? -1.0 : p == -1 ? 1.0 : d->xg[p];
             const double hp = poly(hc, M, x), dq = poly(qc, M, x) - ub * hp;
             if (dq == 0.0)
@@ -435,14 +613,16 @@ static inline __attribute__((always_inline)) gf_status fix_cells_m(gf_sh1d *s, d
     fill_ghosts(s, d, h, q);
     for (size_t c = d->lo - 1; c <= d->hi + 1; ++c)
         d->ubar[c] = h[c * (size_t)M] >= hs ? q[c * (size_t)M] / h[c * (size_t)M] : 0.0;
+    const size_t n = s->n;
     for (size_t c = d->lo; c <= d->hi; ++c) {
         double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
         const double hb = hc[0];
         if (hb >= hs)
             continue;
         double ub = 0.0;
-        if (hb >= he) { /* semi-wet: velocity from the wetter neighbour */
-            const double hl = h[(c - 1) * (size_t)M], hr = h[(c + 1) * (size_t)M];
+        if (hb >= he) { /* semi-wet: velocity from the wetter neighbour (not a front's ghost) */
+            const double hl = d->ale && d->free_l && c == 1 ? 0.0 : h[(c - 1) * (size_t)M];
+            const double hr = d->ale && d->free_r && c == n ? 0.0 : h[(c + 1) * (size_t)M];
             if (hl < hs && hr < hs)
                 ub = 0.0;
             else if (hl >= hr)
@@ -494,6 +674,16 @@ static gf_status dg_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
     dg *d = s->impl;
     const dg *f = fs->impl;
     const int M = d->m;
+    if (d->ale) { /* the moving mesh: the fine grid's nodes */
+        d->free_l = f->free_l;
+        d->free_r = f->free_r;
+        d->xa = f->xa;
+        d->xb = f->xb;
+        set_geometry(s, d, d->xa, d->xb);
+        bed_at_points(s, d);
+        for (size_t c = 1; c <= s->n; ++c)
+            d->stopped[c] = f->stopped[2 * c - 1] && f->stopped[2 * c];
+    }
     double x5[5], w5[5];
     gf_status st = gf_gauss_legendre5(x5, w5);
     if (st)
@@ -515,6 +705,74 @@ static gf_status dg_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
     return finish_state(s, d);
 }
 
+/* The end of the initial data's wet set between a dry point and a wet one
+ * (bisection to round-off). */
+static double wet_end(gf_sh1d_initial_fn fn, void *ctx, double dry, double wet)
+{
+    for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (dry + wet);
+        if (mid == dry || mid == wet)
+            break;
+        double h, u;
+        fn(mid, ctx, &h, &u);
+        if (h > 0.0)
+            wet = mid;
+        else
+            dry = mid;
+    }
+    return wet;
+}
+
+/* The moving mesh's first nodes: the wet interval of the initial data,
+ * sampled 16 times per cell of the fixed grid, its ends found by bisection;
+ * an end on the domain's boundary stays there. */
+static gf_status initial_nodes(gf_sh1d *s, dg *d, gf_sh1d_initial_fn fn, void *ctx)
+{
+    const double lo = s->cfg.x_min, hi = s->cfg.x_max;
+    const size_t ns = 16 * s->n;
+    size_t first = ns + 1, last = 0;
+    for (size_t k = 0; k <= ns; ++k) {
+        const double x = k == ns ? hi : lo + (hi - lo) * (double)k / (double)ns;
+        double h, u;
+        fn(x, ctx, &h, &u);
+        if (!isfinite(h) || !isfinite(u) || h < 0.0)
+            return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite values and h >= 0)",
+                           x, h, u);
+        if (h > 0.0) {
+            if (first > ns)
+                first = k;
+            last = k;
+        }
+    }
+    if (first > ns)
+        return gf_fail(GF_EDOM, "rkdg moving mesh: the initial data are dry at every sample of [%g, %g]; "
+                                "the mesh spans the wet interval", lo, hi);
+    const double dxs = (hi - lo) / (double)ns;
+    d->free_l = first > 0;
+    d->free_r = last < ns;
+    const double xa = d->free_l ? wet_end(fn, ctx, lo + dxs * (double)(first - 1), lo + dxs * (double)first) : lo;
+    const double xb = d->free_r ? wet_end(fn, ctx, lo + dxs * (double)(last + 1), lo + dxs * (double)last) : hi;
+    d->xa = xa;
+    d->xb = xb;
+    set_geometry(s, d, xa, xb);
+    bed_at_points(s, d);
+    return GF_SUCCESS;
+}
+
+/* The moving mesh's first stopped flags: friction holds an initial cell
+ * at rest when the net force on its mean is within the friction capacity
+ * (the Euler stage's test as dt -> 0); it decides whether a front node
+ * moves in the first stage. */
+static void initial_stopped(gf_sh1d *s, dg *d)
+{
+    const size_t M = (size_t)d->m;
+    for (size_t c = 0; c < d->nc; ++c)
+        d->stopped[c] = 1; /* nodes still in this call of rhs */
+    rhs(s, d, d->h, d->q);
+    for (size_t c = 1; c <= s->n; ++c)
+        d->stopped[c] = d->q[c * M] == 0.0 && fabs(d->rq[c * M]) <= d->cap[c];
+}
+
 static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
 {
     dg *d = s->impl;
@@ -522,6 +780,8 @@ static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
     double x5[5], w5[5];
     gf_status gst = gf_gauss_legendre5(x5, w5);
     if (gst)
+        return gst;
+    if (d->ale && (gst = initial_nodes(s, d, fn, ctx)))
         return gst;
     for (size_t c = 1; c <= s->n; ++c) {
         const double xc = gf_sh1d_cell_centre(s, c - 1);
@@ -541,7 +801,10 @@ static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
             d->q[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sq;
         }
     }
-    return finish_state(s, d);
+    gst = finish_state(s, d);
+    if (!gst && d->ale)
+        initial_stopped(s, d);
+    return gst;
 }
 
 /* CFL step from the largest wave speed |u| + sqrt(beta h) over every point
@@ -552,20 +815,28 @@ static double dg_max_dt(const gf_sh1d *s)
 {
     const dg *d = s->impl;
     const int M = d->m;
-    double amax = 0.0;
+    double amax = 0.0, va = 0.0, dv = 0.0;
+    if (d->ale) { /* speeds relative to the mesh */
+        double vb;
+        node_velocities(s, d, d->h, d->q, &va, &vb);
+        dv = (vb - va) / (double)s->n;
+        /* and the cells shrink by at most a quarter in a step */
+        amax = dmax(amax, -4.0 * dv * s->cfl);
+    }
     for (size_t c = 1; c <= s->n; ++c) {
         const double *hc = &d->h[c * (size_t)M], *qc = &d->q[c * (size_t)M];
         if (hc[0] <= s->cfg.h_eps)
             continue;
         const double beta = gf_sh_beta_c(s->cfg.epsilon, d->k[c], d->czg[c * (size_t)d->ng]);
         double hp, up;
+        const double wl = va + dv * (double)(c - 1), wr = wl + dv; /* 0 on the fixed grid */
         point_state(s, right_value(hc, M), right_value(qc, M), &hp, &up);
-        amax = dmax(amax, fabs(up) + sqrt(beta * hp));
+        amax = dmax(amax, fabs(up - wr) + sqrt(beta * hp));
         point_state(s, left_value(hc, M), left_value(qc, M), &hp, &up);
-        amax = dmax(amax, fabs(up) + sqrt(beta * hp));
+        amax = dmax(amax, fabs(up - wl) + sqrt(beta * hp));
         for (int g = 0; g < d->ng; ++g) {
             point_state(s, poly(hc, M, d->xg[g]), poly(qc, M, d->xg[g]), &hp, &up);
-            amax = dmax(amax, fabs(up) + sqrt(beta * hp));
+            amax = dmax(amax, fabs(up - (wl + 0.5 * dv * (1.0 + d->xg[g]))) + sqrt(beta * hp));
         }
     }
     return amax > 0.0 ? s->cfl * s->dx / amax : HUGE_VAL;
@@ -573,12 +844,31 @@ static double dg_max_dt(const gf_sh1d *s)
 
 /* out = a*base + b*(in + dt L(in)), with friction that never reverses the
  * mean momentum, then limiter, positivity and dry treatment. */
-static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, double a,
-                             const double *hb, const double *qb, double b, double dt, double *hout,
-                             double *qout)
+/* The moving mesh: the stage's nodes are the same combination of the base's
+ * nodes and the input's moved at its node velocities, x_out = a x_b + b (x_in
+ * + dt v), and the cells' contents dx U combine alike (U_out = (a dx_b U_b +
+ * b dx_in U_e) / dx_out), so that a uniform state stays uniform (the
+ * geometric conservation law) and the mass is kept.  xin, xb, xout: the nodes
+ * (xa, xb) of hin, hb and hout. */
+static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, const double xin[2], double a,
+                             const double *hb, const double *qb, const double xbase[2], double b, double dt,
+                             double *hout, double *qout, double xout[2])
 {
     const int M = d->m;
-    rhs(s, d, hin, qin);
+    double ra = a, rb = b; /* weights of the base and the Euler update */
+    if (d->ale) {
+        set_geometry(s, d, xin[0], xin[1]);
+        rhs(s, d, hin, qin);
+        const double xa = (hb ? a * xbase[0] : 0.0) + b * (xin[0] + dt * d->va);
+        const double xe = (hb ? a * xbase[1] : 0.0) + b * (xin[1] + dt * d->vb);
+        if (!(xe - xa > 0.0)) /* the wet interval collapsed in this step: repeat it in halves */
+            return gf_fail(GF_EPHYS, "rkdg moving mesh: the wet interval collapsed at t = %g", s->t);
+        ra = hb ? a * (xbase[1] - xbase[0]) / (xe - xa) : 0.0;
+        rb = b * (xin[1] - xin[0]) / (xe - xa);
+        xout[0] = xa;
+        xout[1] = xe;
+    } else
+        rhs(s, d, hin, qin);
     for (size_t c = d->lo; c <= d->hi; ++c) {
         const size_t o = c * (size_t)M;
         double he[MAXM] = {0}, qe[MAXM] = {0};
@@ -598,10 +888,12 @@ static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, double
             d->stopped[c] = 0;
         }
         for (int m = 0; m < M; ++m) {
-            hout[o + m] = (hb ? a * hb[o + m] : 0.0) + b * he[m];
-            qout[o + m] = (qb ? a * qb[o + m] : 0.0) + b * qe[m];
+            hout[o + m] = (hb ? ra * hb[o + m] : 0.0) + rb * he[m];
+            qout[o + m] = (qb ? ra * qb[o + m] : 0.0) + rb * qe[m];
         }
     }
+    if (d->ale)
+        set_geometry(s, d, xout[0], xout[1]); /* the limiters' TVB bound M dx^2 */
     fill_ghosts(s, d, hout, qout);
     limit_var(s, d, hout);
     limit_var(s, d, qout);
@@ -621,15 +913,23 @@ static gf_status rk3_step(gf_sh1d *s, dg *d, double dt)
     memcpy(d->h0, d->h, nm * sizeof *d->h);
     memcpy(d->q0, d->q, nm * sizeof *d->q);
     memcpy(d->moving0, d->moving, d->nc);
-    if ((st = euler_stage(s, d, d->h0, d->q0, 0.0, NULL, NULL, 1.0, dt, d->h1, d->q1)) ||
-        (st = euler_stage(s, d, d->h1, d->q1, 0.75, d->h0, d->q0, 0.25, dt, d->h1, d->q1)) ||
-        (st = euler_stage(s, d, d->h1, d->q1, 1.0 / 3.0, d->h0, d->q0, 2.0 / 3.0, dt, d->h, d->q))) {
+    memcpy(d->stopped0, d->stopped, d->nc);
+    const double x0[2] = {d->xa, d->xb};
+    double x1[2] = {d->xa, d->xb}, x2[2] = {d->xa, d->xb}, xn[2] = {d->xa, d->xb};
+    if ((st = euler_stage(s, d, d->h0, d->q0, x0, 0.0, NULL, NULL, x0, 1.0, dt, d->h1, d->q1, x1)) ||
+        (st = euler_stage(s, d, d->h1, d->q1, x1, 0.75, d->h0, d->q0, x0, 0.25, dt, d->h1, d->q1, x2)) ||
+        (st = euler_stage(s, d, d->h1, d->q1, x2, 1.0 / 3.0, d->h0, d->q0, x0, 2.0 / 3.0, dt, d->h, d->q, xn))) {
         memcpy(d->h, d->h0, nm * sizeof *d->h);
         memcpy(d->q, d->q0, nm * sizeof *d->q);
         memcpy(d->moving, d->moving0, d->nc);
+        memcpy(d->stopped, d->stopped0, d->nc);
+        if (d->ale)
+            set_geometry(s, d, d->xa, d->xb);
         fill_ghosts(s, d, d->h, d->q);
         return st;
     }
+    d->xa = xn[0];
+    d->xb = xn[1];
     /* cells stopped by friction in the last stage are at rest */
     for (size_t c = d->lo; c <= d->hi; ++c)
         if (d->stopped[c])
@@ -657,7 +957,19 @@ static gf_status dg_substep(gf_sh1d *s, dg *d, double dt, int depth)
     return dg_substep(s, d, 0.5 * dt, depth + 1);
 }
 
-static gf_status dg_step(gf_sh1d *s, double dt) { return dg_substep(s, s->impl, dt, 0); }
+static gf_status dg_step(gf_sh1d *s, double dt)
+{
+    dg *d = s->impl;
+    gf_status st = dg_substep(s, d, dt, 0);
+    if (st || !d->ale)
+        return st;
+    if (d->xb > s->cfg.x_max || d->xa < s->cfg.x_min)
+        return gf_fail(GF_EDOM, "rkdg moving mesh: the %s front reached the domain's end (x = %g, domain [%g, %g]) "
+                                "at t = %g; widen the domain (x_min, x_max) or use the fixed grid",
+                       d->xb > s->cfg.x_max ? "right" : "left", d->xb > s->cfg.x_max ? d->xb : d->xa,
+                       s->cfg.x_min, s->cfg.x_max, s->t + dt);
+    return GF_SUCCESS;
+}
 
 static void dg_means(const gf_sh1d *s, double *h, double *q)
 {
@@ -689,8 +1001,33 @@ static double dg_min_depth(const gf_sh1d *s)
     return mn;
 }
 
+/* The largest wave speed |u| + sqrt(beta h) (the start-up's length): on the
+ * fixed grid that of max_dt's bound; on the moving mesh in the bed's frame,
+ * not relative to the mesh. */
+static double dg_wave_speed(const gf_sh1d *s)
+{
+    const dg *d = s->impl;
+    if (!d->ale)
+        return s->cfl * s->dx / dg_max_dt(s);
+    const int M = d->m;
+    double amax = 0.0;
+    for (size_t c = 1; c <= s->n; ++c) {
+        const double *hc = &d->h[c * (size_t)M], *qc = &d->q[c * (size_t)M];
+        if (hc[0] <= s->cfg.h_eps)
+            continue;
+        const double beta = gf_sh_beta_c(s->cfg.epsilon, d->k[c], d->czg[c * (size_t)d->ng]);
+        for (int p = -2; p < d->ng; ++p) {
+            double hp, up;
+            const double x = p == -2 ? -1.0 : p == -1 ? 1.0 : d->xg[p];
+            point_state(s, poly(hc, M, x), poly(qc, M, x), &hp, &up);
+            amax = dmax(amax, fabs(up) + sqrt(beta * hp));
+        }
+    }
+    return amax;
+}
+
 static const gf_sh1d_type dg_type = {
     "rkdg", dg_init, dg_free, dg_set_initial, dg_max_dt, dg_step, dg_means, dg_eval, dg_min_depth,
-    dg_restrict_from, NULL, NULL,
+    dg_restrict_from, dg_wave_speed, NULL,
 };
 const gf_sh1d_type *const gf_sh1d_rkdg = &dg_type;

@@ -37,6 +37,7 @@ void gf_sh1d_config_init(gf_sh1d_config *c)
     c->scheme = 3;
     c->kinetic_order = 1;
     c->startup_levels = 0;
+    c->moving_mesh = 0;
 }
 
 const gf_sh1d_type *gf_sh1d_type_lookup(const char *name)
@@ -104,6 +105,11 @@ static gf_status check_config(const gf_sh1d_config *c)
                        c->startup_levels, c->n_cells << c->startup_levels);
     if ((c->bc_left == GF_BC_PERIODIC) != (c->bc_right == GF_BC_PERIODIC))
         return gf_fail(GF_EINVAL, "periodic boundaries must be periodic on both sides");
+    if (c->moving_mesh != 0 && c->moving_mesh != 1)
+        return gf_fail(GF_EDOM, "moving_mesh = %d is outside {0: fixed grid, 1: front tracking}", c->moving_mesh);
+    if (c->moving_mesh && c->bc_left == GF_BC_PERIODIC)
+        return gf_fail(GF_EINVAL, "moving_mesh = 1 needs a dry front, and a periodic domain has no ends; "
+                                  "use a transmissive or wall boundary");
     if ((st = gf_friction_check(&c->friction)))
         return st;
     if (c->topo) {
@@ -131,6 +137,7 @@ gf_status gf_sh1d_alloc(const gf_sh1d_type *type, const gf_sh1d_config *cfg, gf_
     s->cfg = *cfg;
     s->n = cfg->n_cells;
     s->dx = (cfg->x_max - cfg->x_min) / (double)cfg->n_cells;
+    s->x0 = cfg->x_min;
     s->scratch = malloc(2 * s->n * sizeof *s->scratch);
     if (!s->scratch) {
         free(s);
@@ -344,7 +351,12 @@ size_t gf_sh1d_n_cells(const gf_sh1d *s) { return s->n; }
 double gf_sh1d_dx(const gf_sh1d *s) { return s->dx; }
 double gf_sh1d_cell_centre(const gf_sh1d *s, size_t i)
 {
-    return s->cfg.x_min + ((double)i + 0.5) * s->dx;
+    return s->x0 + ((double)i + 0.5) * s->dx;
+}
+void gf_sh1d_extent(const gf_sh1d *s, double *x_lo, double *x_hi)
+{
+    *x_lo = s->x0;
+    *x_hi = s->cfg.moving_mesh ? s->x0 + (double)s->n * s->dx : s->cfg.x_max;
 }
 const gf_sh1d_config *gf_sh1d_get_config(const gf_sh1d *s) { return &s->cfg; }
 
@@ -362,7 +374,13 @@ gf_status gf_sh1d_eval(const gf_sh1d *s, double x, double *h, double *u)
     if (!(x >= s->cfg.x_min && x <= s->cfg.x_max))
         return gf_fail(GF_EDOM, "gf_sh1d_eval: x = %g outside the domain [%g, %g]", x,
                        s->cfg.x_min, s->cfg.x_max);
-    size_t i = (size_t)((x - s->cfg.x_min) / s->dx);
+    double lo, hi;
+    gf_sh1d_extent(s, &lo, &hi);
+    if (x < lo || x > hi) { /* the moving mesh: beyond a front */
+        *h = *u = 0.0;
+        return GF_SUCCESS;
+    }
+    size_t i = (size_t)((x - lo) / s->dx);
     if (i >= s->n)
         i = s->n - 1;
     const double xi = 2.0 * (x - gf_sh1d_cell_centre(s, i)) / s->dx;

@@ -33,6 +33,8 @@ struct gf_sh1d {
     gf_sh1d_config cfg;
     size_t n;
     double dx, t, cfl;
+    double x0;                   /* left end of the grid: x_min, or the moving mesh's left
+                                    node (moving_mesh; dx then changes with time too) */
     size_t steps;
     size_t rejected;             /* steps repeated with a smaller dt (positivity) */
     double *scratch;             /* 2 n: cell means for checks and diagnostics */
