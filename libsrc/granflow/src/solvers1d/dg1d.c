@@ -39,10 +39,10 @@ typedef struct dg {
     size_t lo, hi;
     /* the moving mesh (cfg.moving_mesh): which ends are dry fronts (their
      * node moves), the node velocities of the state rhs saw last, and the
-     * nodes of the solution and of the stage buffers h0/q0 and h1/q1 */
+     * solution's nodes (the stages' are rk3_step's locals) */
     int ale, free_l, free_r;
     double va, vb;
-    double xa, xb, xa0, xb0, xa1, xb1;
+    double xa, xb;
 } dg;
 
 /* min and max of two numbers (no NaN here): inline, where fmin and fmax
