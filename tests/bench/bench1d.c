@@ -171,6 +171,20 @@ static double front_of(const gf_sh1d *s, const double *h)
     return NAN;
 }
 
+/* the exact depth of a dry-front problem at (x, t); a: the incline frame's
+ * acceleration */
+struct exact_at { int problem; const gf_riemann *rp; double a, t; };
+static double exact_depth(double x, void *ctx)
+{
+    const struct exact_at *e = ctx;
+    double h, u;
+    if (e->problem == CAP)
+        gf_spreading_cap_sample(&cap, x, e->t, &h, &u);
+    else
+        gf_riemann_sample(e->rp, x - 0.5 * e->a * e->t * e->t, e->t, &h, &u);
+    return h;
+}
+
 /* L1 error of the cell means against the exact cell means (16 samples) and the
  * front error in cells, for the dry-front problems */
 static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *ritter,
@@ -181,38 +195,17 @@ static double dry_front_errors(const gf_sh1d *s, int problem, const gf_riemann *
     const double beta = problem == INCLINE ? cos(INCLINE_ZETA) : 1.0;
     const size_t n = gf_sh1d_n_cells(s);
     const double dx = gf_sh1d_dx(s), t = 5.0;
+    struct exact_at at = {problem, problem == INCLINE ? incline : ritter, a, t};
     double *h = malloc(2 * n * sizeof *h), e = 0.0;
     gf_sh1d_means(s, h, h + n);
     for (size_t i = 0; i < n; ++i) {
         double mean = 0.0;
-        for (int k = 0; k < 16; ++k) {
-            const double x = gf_sh1d_cell_centre(s, i) + dx * ((k + 0.5) / 16.0 - 0.5);
-            double he, ue;
-            if (problem == CAP)
-                gf_spreading_cap_sample(&cap, x, t, &he, &ue);
-            else
-                gf_riemann_sample(problem == INCLINE ? incline : ritter, x - 0.5 * a * t * t, t, &he, &ue);
-            mean += he / 16.0;
-        }
+        for (int k = 0; k < 16; ++k)
+            mean += exact_depth(gf_sh1d_cell_centre(s, i) + dx * ((k + 0.5) / 16.0 - 0.5), &at) / 16.0;
         e += fabs(h[i] - mean) * dx;
     }
     /* the moving mesh: the exact depth beyond its ends */
-    const gf_sh1d_config *c = gf_sh1d_get_config(s);
-    double lo, hi;
-    gf_sh1d_extent(s, &lo, &hi);
-    for (int side = 0; side < 2; ++side) {
-        const double x0 = side ? hi : c->x_min, x1 = side ? c->x_max : lo;
-        const int ns = 20000;
-        for (int k = 0; k < ns && x1 > x0; ++k) {
-            const double x = x0 + (x1 - x0) * (k + 0.5) / ns;
-            double he, ue;
-            if (problem == CAP)
-                gf_spreading_cap_sample(&cap, x, t, &he, &ue);
-            else
-                gf_riemann_sample(problem == INCLINE ? incline : ritter, x - 0.5 * a * t * t, t, &he, &ue);
-            e += he * (x1 - x0) / ns;
-        }
-    }
+    e += gf_sh1d_depth_beyond(s, exact_depth, &at, 20000);
     double xe;
     if (problem == CAP) {
         double lam, dlam;

@@ -25,6 +25,12 @@ double gf_sh1d_l1_difference(const gf_sh1d *a, const gf_sh1d *b);
  * the exact depth beyond its ends, where it is dry. */
 double gf_sh1d_l1_error_riemann(const gf_sh1d *s, const gf_riemann *exact, double t);
 
+/* The integral of an exact depth over the parts of the domain beyond the
+ * grid's ends (gf_sh1d_extent; none on the fixed grid), by the midpoint rule
+ * with `samples` points on each part: what the L1 error of a moving mesh
+ * (moving_mesh) adds for the depth it does not cover. */
+double gf_sh1d_depth_beyond(const gf_sh1d *s, double (*depth)(double x, void *ctx), void *ctx, size_t samples);
+
 #ifdef __cplusplus
 }
 #endif

@@ -87,7 +87,8 @@ static void bed_at_points(const gf_sh1d *s, dg *d)
 }
 
 /* The moving mesh's nodes xa, xb: the grid of s (and the bed's values at
- * its points, where the bed is not a plane). */
+ * its points, where the bed is not a plane: without topography they do not
+ * depend on x). */
 static void set_geometry(gf_sh1d *s, dg *d, double xa, double xb)
 {
     s->x0 = xa;
@@ -322,6 +323,8 @@ static void node_velocities(const gf_sh1d *s, const dg *d, const double *h, cons
 {
     const size_t n = s->n, M = (size_t)d->m;
     *va = *vb = 0.0;
+    if (!d->free_l && !d->free_r)
+        return;
     double rmin, rmax;
     invariant_bounds(s, d, h, q, &rmin, &rmax);
     if (d->free_r && h[n * M] >= s->cfg.h_semi && !d->stopped[n]) {
@@ -352,8 +355,8 @@ static void node_velocities(const gf_sh1d *s, const dg *d, const double *h, cons
 #define SUPERCRITICAL 2.0
 
 /* Right-hand side without friction (rh, rq), the friction term of every q
- * mode (fm) and the friction capacity of the mean (cap), per unit time. */
-/* The moving mesh (ALE = 1; not in the papers: the arbitrary
+ * mode (fm) and the friction capacity of the mean (cap), per unit time.
+ * The moving mesh (ALE = 1; not in the papers: the arbitrary
  * Lagrangian-Eulerian form of the weak form, rkdg eq. 12, on cells that move
  * with the nodes): every flux is relative to the mesh velocity w, linear
  * between the node velocities va and vb (F - w U, waves u - w +- c), and the
@@ -527,7 +530,7 @@ static inline __attribute__((always_inline)) void limit_velocity(const gf_sh1d *
 {
     const double hs = s->cfg.h_semi;
     double rmin = -HUGE_VAL, rmax = HUGE_VAL;
-    if (d->ale)
+    if (d->ale && (d->free_l || d->free_r))
         invariant_bounds(s, d, h, q, &rmin, &rmax);
     for (size_t c = d->lo; c <= d->hi; ++c) {
         double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
@@ -680,7 +683,6 @@ static gf_status dg_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
         d->xa = f->xa;
         d->xb = f->xb;
         set_geometry(s, d, d->xa, d->xb);
-        bed_at_points(s, d);
         for (size_t c = 1; c <= s->n; ++c)
             d->stopped[c] = f->stopped[2 * c - 1] && f->stopped[2 * c];
     }
@@ -755,7 +757,6 @@ static gf_status initial_nodes(gf_sh1d *s, dg *d, gf_sh1d_initial_fn fn, void *c
     d->xa = xa;
     d->xb = xb;
     set_geometry(s, d, xa, xb);
-    bed_at_points(s, d);
     return GF_SUCCESS;
 }
 
@@ -807,22 +808,14 @@ static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
     return gst;
 }
 
-/* CFL step from the largest wave speed |u| + sqrt(beta h) over every point
- * the fluxes see (both end values and the Gauss points of every cell), not
- * only the means: the positivity of the means (Zhang–Shu) needs
- * dt alpha_interface <= w_GL dx. */
-static double dg_max_dt(const gf_sh1d *s)
+/* The largest |u - w| + sqrt(beta h) over both end values and the Gauss
+ * points of every wet cell, w the mesh velocity, linear va + dv (x - x0) / dx
+ * (0 on the fixed grid, and for the speed in the bed's frame). */
+static double max_point_speed(const gf_sh1d *s, double va, double dv)
 {
     const dg *d = s->impl;
     const int M = d->m;
-    double amax = 0.0, va = 0.0, dv = 0.0;
-    if (d->ale) { /* speeds relative to the mesh */
-        double vb;
-        node_velocities(s, d, d->h, d->q, &va, &vb);
-        dv = (vb - va) / (double)s->n;
-        /* and the cells shrink by at most a quarter in a step */
-        amax = dmax(amax, -4.0 * dv * s->cfl);
-    }
+    double amax = 0.0;
     for (size_t c = 1; c <= s->n; ++c) {
         const double *hc = &d->h[c * (size_t)M], *qc = &d->q[c * (size_t)M];
         if (hc[0] <= s->cfg.h_eps)
@@ -839,17 +832,36 @@ static double dg_max_dt(const gf_sh1d *s)
             amax = dmax(amax, fabs(up - (wl + 0.5 * dv * (1.0 + d->xg[g]))) + sqrt(beta * hp));
         }
     }
+    return amax;
+}
+
+/* CFL step from the largest wave speed |u| + sqrt(beta h) (on the moving
+ * mesh relative to it) over every point the fluxes see (both end values and
+ * the Gauss points of every cell), not only the means: the positivity of the
+ * means (Zhang–Shu) needs dt alpha_interface <= w_GL dx. */
+static double dg_max_dt(const gf_sh1d *s)
+{
+    const dg *d = s->impl;
+    double amax = 0.0, va = 0.0, dv = 0.0;
+    if (d->ale) { /* speeds relative to the mesh */
+        double vb;
+        node_velocities(s, d, d->h, d->q, &va, &vb);
+        dv = (vb - va) / (double)s->n;
+        /* and the cells shrink by at most a quarter in a step */
+        amax = dmax(amax, -4.0 * dv * s->cfl);
+    }
+    amax = dmax(amax, max_point_speed(s, va, dv));
     return amax > 0.0 ? s->cfl * s->dx / amax : HUGE_VAL;
 }
 
 /* out = a*base + b*(in + dt L(in)), with friction that never reverses the
- * mean momentum, then limiter, positivity and dry treatment. */
-/* The moving mesh: the stage's nodes are the same combination of the base's
+ * mean momentum, then limiter, positivity and dry treatment.
+ * The moving mesh: the stage's nodes are the same combination of the base's
  * nodes and the input's moved at its node velocities, x_out = a x_b + b (x_in
  * + dt v), and the cells' contents dx U combine alike (U_out = (a dx_b U_b +
  * b dx_in U_e) / dx_out), so that a uniform state stays uniform (the
- * geometric conservation law) and the mass is kept.  xin, xb, xout: the nodes
- * (xa, xb) of hin, hb and hout. */
+ * geometric conservation law) and the mass is kept.  xin, xbase, xout: the
+ * nodes (xa, xb) of hin, hb and hout. */
 static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, const double xin[2], double a,
                              const double *hb, const double *qb, const double xbase[2], double b, double dt,
                              double *hout, double *qout, double xout[2])
@@ -1007,23 +1019,7 @@ static double dg_min_depth(const gf_sh1d *s)
 static double dg_wave_speed(const gf_sh1d *s)
 {
     const dg *d = s->impl;
-    if (!d->ale)
-        return s->cfl * s->dx / dg_max_dt(s);
-    const int M = d->m;
-    double amax = 0.0;
-    for (size_t c = 1; c <= s->n; ++c) {
-        const double *hc = &d->h[c * (size_t)M], *qc = &d->q[c * (size_t)M];
-        if (hc[0] <= s->cfg.h_eps)
-            continue;
-        const double beta = gf_sh_beta_c(s->cfg.epsilon, d->k[c], d->czg[c * (size_t)d->ng]);
-        for (int p = -2; p < d->ng; ++p) {
-            double hp, up;
-            const double x = p == -2 ? -1.0 : p == -1 ? 1.0 : d->xg[p];
-            point_state(s, poly(hc, M, x), poly(qc, M, x), &hp, &up);
-            amax = dmax(amax, fabs(up) + sqrt(beta * hp));
-        }
-    }
-    return amax;
+    return d->ale ? max_point_speed(s, 0.0, 0.0) : s->cfl * s->dx / dg_max_dt(s);
 }
 
 static const gf_sh1d_type dg_type = {

@@ -22,6 +22,15 @@ double gf_sh1d_l1_difference(const gf_sh1d *a, const gf_sh1d *b)
     return e;
 }
 
+typedef struct { const gf_riemann *rp; double t; } riemann_at;
+static double riemann_depth(double x, void *ctx)
+{
+    const riemann_at *r = ctx;
+    double h, u;
+    gf_riemann_sample(r->rp, x, r->t, &h, &u);
+    return h;
+}
+
 double gf_sh1d_l1_error_riemann(const gf_sh1d *s, const gf_riemann *exact, double t)
 {
     double *h = s->scratch, e = 0.0;
@@ -37,16 +46,18 @@ double gf_sh1d_l1_error_riemann(const gf_sh1d *s, const gf_riemann *exact, doubl
         e += fabs(h[i] - mean) * s->dx;
     }
     /* the moving mesh: the exact depth beyond its ends, where it is dry */
-    double lo, hi;
+    riemann_at rt = {exact, t};
+    return e + gf_sh1d_depth_beyond(s, riemann_depth, &rt, 16 * s->n);
+}
+
+double gf_sh1d_depth_beyond(const gf_sh1d *s, double (*depth)(double x, void *ctx), void *ctx, size_t samples)
+{
+    double lo, hi, e = 0.0;
     gf_sh1d_extent(s, &lo, &hi);
     for (int side = 0; side < 2; ++side) {
         const double a = side ? hi : s->cfg.x_min, b = side ? s->cfg.x_max : lo;
-        const size_t ns = 16 * s->n;
-        for (size_t k = 0; k < ns && b > a; ++k) {
-            double he, ue;
-            gf_riemann_sample(exact, a + (b - a) * ((double)k + 0.5) / (double)ns, t, &he, &ue);
-            e += he * (b - a) / (double)ns;
-        }
+        for (size_t k = 0; k < samples && b > a; ++k)
+            e += depth(a + (b - a) * ((double)k + 0.5) / (double)samples, ctx) * (b - a) / (double)samples;
     }
     return e;
 }
