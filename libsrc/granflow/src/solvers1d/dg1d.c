@@ -814,7 +814,7 @@ static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
  * moving mesh's front node: no flux passes it, the node's own velocity is
  * the fan's edge (node_velocities), and q/h of the trace there, where the
  * depth vanishes, means nothing (the velocity bound does not test it
- * either).  Counting it cut P2's step 40-fold while a dam break's fan was
+ * either).  Counting it cut P2's step up to 40-fold while a dam break's fan was
  * inside the end cell (Ritter, N = 400, t = 0.03-0.2: the trace's q/h up to
  * 107 at h = 3e-5). */
 static double max_point_speed(const gf_sh1d *s, double va, double dv)
