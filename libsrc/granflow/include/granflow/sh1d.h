@@ -117,9 +117,11 @@ typedef struct gf_sh1d_config {
                                 proportion.  The equations in ALE form: fluxes relative to
                                 the mesh velocity, none through a front node (mass kept to
                                 round-off).  A front's kink or jump then sits on a node
-                                instead of inside a cell.  The wet interval must stay inside
-                                the domain (an error names the front that reaches its end);
-                                not with periodic boundaries.  With startup_levels the finer
+                                instead of inside a cell.  A front that reaches the domain's
+                                end lands on it (the step is shortened to do so) and from
+                                then on is a fixed node with bc_left / bc_right (wall: the
+                                flow is reflected; transmissive: it leaves); not with
+                                periodic boundaries.  With startup_levels the finer
                                 grids span the same interval, and each hands its nodes on. */
 } gf_sh1d_config;
 

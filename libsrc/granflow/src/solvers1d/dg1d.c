@@ -682,6 +682,8 @@ static gf_status dg_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
         d->free_r = f->free_r;
         d->xa = f->xa;
         d->xb = f->xb;
+        d->va = f->va;
+        d->vb = f->vb;
         set_geometry(s, d, d->xa, d->xb);
         for (size_t c = 1; c <= s->n; ++c)
             d->stopped[c] = f->stopped[2 * c - 1] && f->stopped[2 * c];
@@ -986,18 +988,61 @@ static gf_status dg_substep(gf_sh1d *s, dg *d, double dt, int depth)
     return dg_substep(s, d, 0.5 * dt, depth + 1);
 }
 
+/* A front node that reached the domain's end stays there: the node is put
+ * on the end exactly, every cell stretched or squeezed alike by what the
+ * landing step (dg_landing_dt) missed it by, at most LANDING_GAP of a cell
+ * short or O(dt^2) past; the cells' contents are kept, so the mass is.  From
+ * then on the end is a fixed node with the configured boundary condition
+ * (wall: the flow is reflected; transmissive: it leaves). */
+#define LANDING_GAP 1e-3
+static void land_fronts(gf_sh1d *s, dg *d)
+{
+    const double gap = LANDING_GAP * s->dx;
+    const int right = d->free_r && d->xb >= s->cfg.x_max - gap;
+    const int left = d->free_l && d->xa <= s->cfg.x_min + gap;
+    if (!right && !left)
+        return;
+    const double xa = left ? s->cfg.x_min : d->xa, xb = right ? s->cfg.x_max : d->xb;
+    const double r = (d->xb - d->xa) / (xb - xa); /* old width over new: contents kept */
+    const size_t M = (size_t)d->m;
+    for (size_t c = 1; c <= s->n; ++c)
+        for (size_t m = 0; m < M; ++m) {
+            d->h[c * M + m] *= r;
+            d->q[c * M + m] *= r;
+        }
+    d->xa = xa;
+    d->xb = xb;
+    if (right)
+        d->free_r = 0;
+    if (left)
+        d->free_l = 0;
+    set_geometry(s, d, xa, xb);
+    fill_ghosts(s, d, d->h, d->q);
+}
+
 static gf_status dg_step(gf_sh1d *s, double dt)
 {
     dg *d = s->impl;
     gf_status st = dg_substep(s, d, dt, 0);
     if (st || !d->ale)
         return st;
-    if (d->xb > s->cfg.x_max || d->xa < s->cfg.x_min)
-        return gf_fail(GF_EDOM, "rkdg moving mesh: the %s front reached the domain's end (x = %g, domain [%g, %g]) "
-                                "at t = %g; widen the domain (x_min, x_max) or use the fixed grid",
-                       d->xb > s->cfg.x_max ? "right" : "left", d->xb > s->cfg.x_max ? d->xb : d->xa,
-                       s->cfg.x_min, s->cfg.x_max, s->t + dt);
+    land_fronts(s, d);
     return GF_SUCCESS;
+}
+
+/* The step after which a moving front node reaches the domain's end, at the
+ * node velocity of the last stage (no new scan; the landing is then within
+ * O(dt^2), and land_fronts puts the node on the end once it is within
+ * LANDING_GAP of a cell), HUGE_VAL when none moves towards it. */
+static double dg_landing_dt(const gf_sh1d *s)
+{
+    const dg *d = s->impl;
+    double dt = HUGE_VAL;
+    if (d->ale && d->free_r && d->vb > 0.0)
+        dt = dmin(dt, (s->cfg.x_max - d->xb) / d->vb);
+    if (d->ale && d->free_l && d->va < 0.0)
+        dt = dmin(dt, (s->cfg.x_min - d->xa) / d->va);
+    return dt > 0.0 ? dt : HUGE_VAL;
 }
 
 static void dg_means(const gf_sh1d *s, double *h, double *q)
@@ -1041,6 +1086,6 @@ static double dg_wave_speed(const gf_sh1d *s)
 
 static const gf_sh1d_type dg_type = {
     "rkdg", dg_init, dg_free, dg_set_initial, dg_max_dt, dg_step, dg_means, dg_eval, dg_min_depth,
-    dg_restrict_from, dg_wave_speed, NULL,
+    dg_restrict_from, dg_wave_speed, NULL, dg_landing_dt,
 };
 const gf_sh1d_type *const gf_sh1d_rkdg = &dg_type;

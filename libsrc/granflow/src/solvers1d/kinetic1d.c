@@ -464,6 +464,6 @@ static double kinetic_startup_cells(const gf_sh1d *s) { return s->cfg.kinetic_or
 static const gf_sh1d_type kinetic_type = {
     "kinetic",     kinetic_init,  kinetic_free, kinetic_set_initial, kinetic_max_dt,
     kinetic_step,  kinetic_means, kinetic_eval,     kinetic_min_depth, kinetic_restrict_from,
-    kinetic_wave_speed, kinetic_startup_cells,
+    kinetic_wave_speed, kinetic_startup_cells, NULL,
 };
 const gf_sh1d_type *const gf_sh1d_kinetic = &kinetic_type;

@@ -320,6 +320,12 @@ gf_status gf_sh1d_step(gf_sh1d *s, double dt_max)
     /* land on the target instead of leaving a round-off sliver of a step */
     if (dt_max < dt * (1.0 + 1e-9))
         dt = dt_max;
+    /* and a moving mesh's front on the domain's end */
+    if (s->type->landing_dt) {
+        const double dl = s->type->landing_dt(s);
+        if (dl < dt)
+            dt = dl;
+    }
     if (!(dt > 0.0) || !isfinite(dt))
         return gf_fail(GF_ENONFINITE, "%s: invalid time step %g at t = %g", s->type->name, dt, s->t);
     gf_status st = s->type->step(s, dt);

@@ -26,6 +26,10 @@ struct gf_sh1d_type {
     /* how many cells the dam-break fan spans when the start-up refinement
      * ends; NULL: STARTUP_CELLS (sh1d.c) */
     double (*startup_cells)(const gf_sh1d *s);
+    /* the step that lands a moving boundary on the domain's end (like an
+     * output time: not a stability bound, so a fixed dt is shortened to it);
+     * NULL or HUGE_VAL: none */
+    double (*landing_dt)(const gf_sh1d *s);
 };
 
 struct gf_sh1d {
