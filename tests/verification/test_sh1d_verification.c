@@ -39,6 +39,17 @@ static void advance(gf_sh1d *s, double t)
         fail_msg("advance: %s", gf_error_detail());
 }
 
+/* step by step to t, h >= 0 at every 16th step; what: the run, for a failure */
+static void advance_nonnegative(gf_sh1d *s, double t, const char *what)
+{
+    for (int step = 0; gf_sh1d_time(s) < t * (1 - 1e-14); ++step) {
+        if (gf_sh1d_step(s, t - gf_sh1d_time(s)))
+            fail_msg("%s: %s", what, gf_error_detail());
+        if (step % 16 == 0)
+            assert_true(gf_sh1d_min_depth(s) >= 0.0);
+    }
+}
+
 static void coulomb(gf_sh1d_config *c, double delta)
 {
     gf_friction_init(&c->friction, "coulomb");
@@ -1181,12 +1192,7 @@ static void moving_mesh_dam_breaks(void **state)
                     assert_int_equal(gf_riemann_solve(&rp, beta, 1.0, 0.0, 0.0, 0.0, 6.0), GF_SUCCESS);
                     gf_sh1d *s = make(gf_sh1d_rkdg, &c, dam_one, NULL);
                     const double m0 = gf_sh1d_mass(s);
-                    for (int step = 0; gf_sh1d_time(s) < T * (1 - 1e-14); ++step) {
-                        if (gf_sh1d_step(s, T - gf_sh1d_time(s)))
-                            fail_msg("P%d moving %d: %s", k, moving, gf_error_detail());
-                        if (step % 16 == 0)
-                            assert_true(gf_sh1d_min_depth(s) >= 0.0);
-                    }
+                    advance_nonnegative(s, T, moving ? "moving mesh" : "fixed grid");
                     if (problem == RITTER)
                         assert_true(fabs(gf_sh1d_mass(s) - m0) <= 1e-12 * m0);
                     const struct exact_depth ed = {&rp, a, NULL};
@@ -1359,12 +1365,7 @@ static void moving_mesh_front_lands_on_the_end(void **state)
                     gf_sh1d *s = problem == 0 ? make(gf_sh1d_rkdg, &c, dam_one, NULL)
                                               : make(gf_sh1d_rkdg, &c, cap_init, &cap);
                     const double m0 = gf_sh1d_mass(s), T = problem == 0 ? 6.0 : 5.0;
-                    for (int step = 0; gf_sh1d_time(s) < T * (1 - 1e-14); ++step) {
-                        if (gf_sh1d_step(s, T - gf_sh1d_time(s)))
-                            fail_msg("P%d moving %d: %s", k, moving, gf_error_detail());
-                        if (step % 16 == 0)
-                            assert_true(gf_sh1d_min_depth(s) >= 0.0);
-                    }
+                    advance_nonnegative(s, T, moving ? "moving mesh" : "fixed grid");
                     if (moving) {
                         double lo, hi;
                         gf_sh1d_extent(s, &lo, &hi);

@@ -243,6 +243,11 @@ static inline double left_value(const double *u, int M)
     return v;
 }
 
+/* Whether cell c (1..n) is the moving mesh's end cell at a right or a left
+ * dry front (both when n = 1): beyond its node is no neighbour and no flux. */
+static inline int front_right(const gf_sh1d *s, const dg *d, size_t c) { return d->ale && d->free_r && c == s->n; }
+static inline int front_left(const dg *d, size_t c) { return d->ale && d->free_l && c == 1; }
+
 /* point state: depth >= 0 and velocity (0 below h_semi) */
 static inline void point_state(const gf_sh1d *s, double h, double q, double *hp, double *up)
 {
@@ -258,8 +263,8 @@ static void update_k(const gf_sh1d *s, dg *d, const double *h, const double *q)
     for (size_t c = d->lo; c <= d->hi; ++c) {
         /* next to a front node the one-sided difference (the ghost beyond it
          * is the end cell's polynomial extended, whose velocity means nothing) */
-        const size_t r = d->ale && d->free_r && c == s->n ? c : c + 1;
-        const size_t l = d->ale && d->free_l && c == 1 ? c : c - 1;
+        const size_t r = front_right(s, d, c) ? c : c + 1;
+        const size_t l = front_left(d, c) ? c : c - 1;
         d->k[c] = gf_earth_pressure_k(&s->cfg.earth_pressure, d->ubar[r] - d->ubar[l]);
     }
 }
@@ -544,7 +549,7 @@ static inline __attribute__((always_inline)) void limit_velocity(const gf_sh1d *
          * the two means extrapolated one cell on, 2 u_c - u_in, within
          * invariant_bounds (a velocity that grows towards the front is not an
          * overshoot), and the node is not tested */
-        const int front = !d->ale ? 0 : (c == s->n && d->free_r) ? 1 : (c == 1 && d->free_l) ? -1 : 0;
+        const int front = front_right(s, d, c) ? 1 : front_left(d, c) ? -1 : 0;
         for (size_t nb = c - 1; nb <= c + 1; nb += 2)
             if (h[nb * (size_t)M] >= hs && !(front && (nb == 0 || nb == s->n + 1))) {
                 lo = dmin(lo, d->ubar[nb]);
@@ -616,7 +621,6 @@ static inline __attribute__((always_inline)) gf_status fix_cells_m(gf_sh1d *s, d
     fill_ghosts(s, d, h, q);
     for (size_t c = d->lo - 1; c <= d->hi + 1; ++c)
         d->ubar[c] = h[c * (size_t)M] >= hs ? q[c * (size_t)M] / h[c * (size_t)M] : 0.0;
-    const size_t n = s->n;
     for (size_t c = d->lo; c <= d->hi; ++c) {
         double *hc = &h[c * (size_t)M], *qc = &q[c * (size_t)M];
         const double hb = hc[0];
@@ -624,8 +628,8 @@ static inline __attribute__((always_inline)) gf_status fix_cells_m(gf_sh1d *s, d
             continue;
         double ub = 0.0;
         if (hb >= he) { /* semi-wet: velocity from the wetter neighbour (not a front's ghost) */
-            const double hl = d->ale && d->free_l && c == 1 ? 0.0 : h[(c - 1) * (size_t)M];
-            const double hr = d->ale && d->free_r && c == n ? 0.0 : h[(c + 1) * (size_t)M];
+            const double hl = front_left(d, c) ? 0.0 : h[(c - 1) * (size_t)M];
+            const double hr = front_right(s, d, c) ? 0.0 : h[(c + 1) * (size_t)M];
             if (hl < hs && hr < hs)
                 ub = 0.0;
             else if (hl >= hr)
@@ -831,11 +835,11 @@ static double max_point_speed(const gf_sh1d *s, double va, double dv)
         const double beta = gf_sh_beta_c(s->cfg.epsilon, d->k[c], d->czg[c * (size_t)d->ng]);
         double hp, up;
         const double wl = va + dv * (double)(c - 1), wr = wl + dv; /* 0 on the fixed grid */
-        if (!(d->ale && d->free_r && c == s->n)) {
+        if (!front_right(s, d, c)) {
             point_state(s, right_value(hc, M), right_value(qc, M), &hp, &up);
             amax = dmax(amax, fabs(up - wr) + sqrt(beta * hp));
         }
-        if (!(d->ale && d->free_l && c == 1)) {
+        if (!front_left(d, c)) {
             point_state(s, left_value(hc, M), left_value(qc, M), &hp, &up);
             amax = dmax(amax, fabs(up - wl) + sqrt(beta * hp));
         }
