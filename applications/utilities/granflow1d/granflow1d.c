@@ -33,7 +33,9 @@
  *                 the CSV then has a row per cell of that interval),
  *                 startup_levels (0; 1..5: the first phase on grids 2^L..2
  *                 times finer, for discontinuous initial data such as a dam
- *                 break on a dry bed); the other method's keys are checked and
+ *                 break on a dry bed), riemann_start (0; t_s > 0: a uniform dam on a
+ *                 dry plane starts at t_s from its exact solution; output times
+ *                 from t_s on); the other method's keys are checked and
  *                 named on stderr as ignored
  *   [output]      times (list), dir (.), name (case file stem), plot (no | yes),
  *                 exact (no | riemann: exact columns for a dam | dressler: Dressler's
@@ -451,6 +453,7 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     c.h_semi = get_num(&d, "solver", "h_semi", 1e-6, 1e-300, 1.0);
     c.startup_levels = (int)get_int(&d, "solver", "startup_levels", 0, 0, 5);
     c.moving_mesh = get_choice(&d, "solver", "moving_mesh", "off", onoff);
+    c.riemann_start = get_num(&d, "solver", "riemann_start", 0.0, 0.0, 1e300);
     if (cs->method == gf_sh1d_kinetic)
         c.moving_mesh = 0; /* named above as not acting */
 
@@ -688,6 +691,14 @@ int main(int argc, char **argv)
         die("[solver]/[domain]: %s", gf_error_detail());
     if (gf_sh1d_set_initial(s, initial, &cs.ini))
         die("[initial]: %s", gf_error_detail());
+    if (cs.c.riemann_start > 0.0) {
+        /* the solver starts at t_s from the dams' exact solution */
+        const double ts = gf_sh1d_time(s);
+        if (cs.times[0] < ts)
+            die("[output] times: %g is before t_s = %g, where riemann_start starts the solver from the "
+                "dam's exact solution; give times >= %g", cs.times[0], ts, ts);
+        printf("Riemann start: the dams' exact solution up to t_s = %.6g\n", ts);
+    }
     run_case(&cs, s, &rp, &dp);
     if (cs.plot)
         write_plot(&cs);

@@ -123,6 +123,29 @@ typedef struct gf_sh1d_config {
                                 flow is reflected; transmissive: it leaves); not with
                                 periodic boundaries.  With startup_levels the finer
                                 grids span the same interval, and each hands its nodes on. */
+    /* both */
+    double riemann_start;    /* 0 (default): the run starts at t = 0 from the initial data.
+                                t_s > 0: a dam on a dry bed starts at t_s from its exact
+                                solution (gf_sh1d_time is then t_s).  The initial data
+                                must be one wet interval of uniform depth and velocity,
+                                with a jump to a dry bed at one end or both (a dam), on a
+                                plane (no topography), with no friction or a friction
+                                whose tau/h depends on neither h nor u (Coulomb with
+                                constant mu) and the flow moving one way, and an
+                                earth-pressure coefficient that is the same at rest and in
+                                expansion.  Then, until the fans meet or reach a boundary,
+                                the exact solution is Ritter's fan of each dam (the
+                                homogeneous dry-bed Riemann problem) in the frame that the
+                                source accelerates uniformly (Mangeney et al. 2000).
+                                Instead of the start-up refinement (not with
+                                startup_levels), and without a start-up error: a dam
+                                break's first steps, while its fan spans a few cells,
+                                otherwise set its error at every later time, at first
+                                order for every degree (issue 11).  With t_s the same on
+                                every grid the error converges at the scheme's order
+                                after t_s.  Data that do not meet these conditions, and a
+                                t_s at which the fans have met or reached the domain's
+                                end, are refused with the reason. */
 } gf_sh1d_config;
 
 /* Defaults: k = 2 with the moment limiter and the velocity bound, the rkdg

@@ -713,24 +713,6 @@ static gf_status dg_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
     return finish_state(s, d);
 }
 
-/* The end of the initial data's wet set between a dry point and a wet one
- * (bisection to round-off). */
-static double wet_end(gf_sh1d_initial_fn fn, void *ctx, double dry, double wet)
-{
-    for (int it = 0; it < 200; ++it) {
-        const double mid = 0.5 * (dry + wet);
-        if (mid == dry || mid == wet)
-            break;
-        double h, u;
-        fn(mid, ctx, &h, &u);
-        if (h > 0.0)
-            wet = mid;
-        else
-            dry = mid;
-    }
-    return wet;
-}
-
 /* The moving mesh's first nodes: the wet interval of the initial data,
  * sampled 16 times per cell of the fixed grid, its ends found by bisection;
  * an end on the domain's boundary stays there. */
@@ -758,8 +740,8 @@ static gf_status initial_nodes(gf_sh1d *s, dg *d, gf_sh1d_initial_fn fn, void *c
     const double dxs = (hi - lo) / (double)ns;
     d->free_l = first > 0;
     d->free_r = last < ns;
-    const double xa = d->free_l ? wet_end(fn, ctx, lo + dxs * (double)(first - 1), lo + dxs * (double)first) : lo;
-    const double xb = d->free_r ? wet_end(fn, ctx, lo + dxs * (double)(last + 1), lo + dxs * (double)last) : hi;
+    const double xa = d->free_l ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(first - 1), lo + dxs * (double)first) : lo;
+    const double xb = d->free_r ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(last + 1), lo + dxs * (double)last) : hi;
     d->xa = xa;
     d->xb = xb;
     set_geometry(s, d, xa, xb);

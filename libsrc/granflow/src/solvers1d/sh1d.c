@@ -38,6 +38,7 @@ void gf_sh1d_config_init(gf_sh1d_config *c)
     c->kinetic_order = 1;
     c->startup_levels = 0;
     c->moving_mesh = 0;
+    c->riemann_start = 0.0;
 }
 
 const gf_sh1d_type *gf_sh1d_type_lookup(const char *name)
@@ -103,6 +104,17 @@ static gf_status check_config(const gf_sh1d_config *c)
     if (c->startup_levels > 0 && (c->n_cells << c->startup_levels) > 100000000)
         return gf_fail(GF_EDOM, "startup_levels = %d needs %zu cells on the finest grid, more than 1e8",
                        c->startup_levels, c->n_cells << c->startup_levels);
+    if ((st = gf_check_range("riemann_start (start time t_s)", c->riemann_start, 0.0, 1e300)))
+        return st;
+    if (c->riemann_start > 0.0 && c->startup_levels > 0)
+        return gf_fail(GF_EINVAL, "riemann_start = %g and startup_levels = %d: the exact start replaces the "
+                                  "start-up refinement; use one of them", c->riemann_start, c->startup_levels);
+    if (c->riemann_start > 0.0 && c->bc_left == GF_BC_PERIODIC)
+        return gf_fail(GF_EINVAL, "riemann_start = %g needs a dam on a dry bed, and a periodic domain has no "
+                                  "ends; use a transmissive or wall boundary", c->riemann_start);
+    if (c->riemann_start > 0.0 && c->topo)
+        return gf_fail(GF_EINVAL, "riemann_start = %g needs a plane bed (constant zeta), where a dam's exact "
+                                  "solution is known; this run has a topography", c->riemann_start);
     if ((c->bc_left == GF_BC_PERIODIC) != (c->bc_right == GF_BC_PERIODIC))
         return gf_fail(GF_EINVAL, "periodic boundaries must be periodic on both sides");
     if (c->moving_mesh != 0 && c->moving_mesh != 1)
@@ -197,6 +209,159 @@ static gf_status restrict_level(gf_sh1d *s, const gf_sh1d *fine, int m, gf_sh1d 
     return GF_SUCCESS;
 }
 
+double gf_sh1d_wet_end(gf_sh1d_initial_fn fn, void *ctx, double dry, double wet)
+{
+    for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (dry + wet);
+        if (mid == dry || mid == wet)
+            break;
+        double h, u;
+        fn(mid, ctx, &h, &u);
+        if (h > 0.0)
+            wet = mid;
+        else
+            dry = mid;
+    }
+    return wet;
+}
+
+/* The Riemann start (config.riemann_start): the dams' exact solution at
+ * t_s.  In the frame X = x - a t^2 / 2, U = u - a t that the source
+ * accelerates uniformly (a = g sin zeta - sgn(u) tau / h, constant under
+ * the conditions riemann_setup checks) the equations are homogeneous
+ * (Mangeney et al. 2000), and each dam's solution is Ritter's (the dry-bed
+ * Riemann problem, gf_riemann) until the fans meet. */
+typedef struct {
+    gf_riemann dam[2]; /* left dam (dry on its left), right dam */
+    int has[2];
+    double hw, uw;     /* the wet interval's uniform state */
+    double a, ts, mid; /* frame acceleration, start time, where the two dams' solutions meet */
+} riemann_start;
+
+static void riemann_state(double x, void *ctx, double *h, double *u)
+{
+    const riemann_start *r = ctx;
+    const double X = x - 0.5 * r->a * r->ts * r->ts;
+    const int side = X >= r->mid;
+    if (r->has[side])
+        gf_riemann_sample(&r->dam[side], X, r->ts, h, u);
+    else { /* no dam on this side: the wet interval reaches the domain's end */
+        *h = r->hw;
+        *u = r->uw;
+    }
+    *u = *h > 0.0 ? *u + r->a * r->ts : 0.0;
+}
+
+/* The initial data's dams, and whether their exact solution at t_s =
+ * config.riemann_start is known (else the reason). */
+static gf_status riemann_setup(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx, riemann_start *r)
+{
+    const gf_sh1d_config *c = &s->cfg;
+    const double lo = c->x_min, hi = c->x_max;
+    const size_t ns = 16 * s->n;
+    size_t first = ns + 1, last = 0;
+    memset(r, 0, sizeof *r);
+    for (size_t k = 0; k <= ns; ++k) {
+        const double x = k == ns ? hi : lo + (hi - lo) * (double)k / (double)ns;
+        double h, u;
+        fn(x, ctx, &h, &u);
+        if (!isfinite(h) || !isfinite(u) || h < 0.0)
+            return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite values and h >= 0)",
+                           x, h, u);
+        if (h > 0.0) {
+            if (first > ns) {
+                first = k;
+                r->hw = h;
+                r->uw = u;
+            }
+            if (last + 1 < k && last >= first)
+                return gf_fail(GF_EDOM, "riemann_start: the initial data are dry at x = %g between wet points; "
+                                        "a Riemann start needs one wet interval",
+                               lo + (hi - lo) * (double)(last + 1) / (double)ns);
+            last = k;
+            if (fabs(h - r->hw) > 1e-12 * r->hw || fabs(u - r->uw) > 1e-12 * (fabs(r->uw) + sqrt(r->hw)))
+                return gf_fail(GF_EDOM, "riemann_start: the initial data are not uniform on the wet side: h = %g, "
+                                        "u = %g at x = %g, h = %g, u = %g at x = %g; a dam's exact solution "
+                                        "needs a uniform reservoir", h, u, x, r->hw, r->uw,
+                               lo + (hi - lo) * (double)first / (double)ns);
+        }
+    }
+    if (first > ns)
+        return gf_fail(GF_EDOM, "riemann_start: the initial data are dry at every sample of [%g, %g]", lo, hi);
+    r->has[0] = first > 0;
+    r->has[1] = last < ns;
+    if (!r->has[0] && !r->has[1])
+        return gf_fail(GF_EDOM, "riemann_start: the initial data are wet on all of [%g, %g], so there is no "
+                                "dam (a jump to a dry bed)", lo, hi);
+    const double dxs = (hi - lo) / (double)ns;
+    const double xl = r->has[0] ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(first - 1), lo + dxs * (double)first) : lo;
+    const double xr = r->has[1] ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(last + 1), lo + dxs * (double)last) : hi;
+    /* the wave speed: beta with the coefficient of an expansion, which must
+     * be the reservoir's at rest too */
+    if (gf_earth_pressure_k(&c->earth_pressure, 1.0) != gf_earth_pressure_k(&c->earth_pressure, 0.0))
+        return gf_fail(GF_EINVAL, "riemann_start: the earth-pressure coefficient differs between rest and "
+                                  "expansion, so a dam's fan is not Ritter's; use isotropic earth pressure");
+    const double beta = gf_sh1d_beta(s, c->zeta, 1.0), cw = sqrt(beta * r->hw);
+    /* the velocities of the fans and the reservoir at t -> 0 */
+    const double umin = r->has[0] ? r->uw - 2.0 * cw : r->uw, umax = r->has[1] ? r->uw + 2.0 * cw : r->uw;
+    r->ts = c->riemann_start;
+    /* the source's acceleration: g sin zeta, less friction tau / h in the
+     * direction of motion, which must be one way for t in (0, t_s] and tau / h
+     * the same at every depth and speed the solution takes */
+    const double gs = c->g * sin(c->zeta);
+    const double tau = gf_sh1d_friction(s, r->hw, umax, c->zeta, 0.0) / r->hw;
+    r->a = gs;
+    if (c->friction.type != gf_friction_none) {
+        static const double hf[] = {1.0, 0.5, 0.1, 1e-3};
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 3; ++j) {
+                const double uj = umin + (umax - umin) * 0.5 * j, hi_ = hf[i] * r->hw;
+                const double ti = gf_sh1d_friction(s, hi_, uj, c->zeta, 0.0) / hi_;
+                if (fabs(ti - tau) > 1e-12 * fabs(tau))
+                    return gf_fail(GF_EINVAL, "riemann_start: the friction law '%s' gives tau/h = %g at h = %g, "
+                                              "u = %g and %g at h = %g, u = %g; a dam's fan is self-similar "
+                                              "only where tau/h depends on neither (no friction, or Coulomb "
+                                              "with constant mu)", c->friction.type->name, ti, hi_, uj,
+                                   tau, r->hw, umax);
+            }
+        const double ap = gs - tau, am = gs + tau; /* moving right, moving left */
+        if (tau > 0.0) {
+            if (umin >= 0.0 && umin + ap * r->ts > 0.0 && (umin > 0.0 || ap > 0.0))
+                r->a = ap;
+            else if (umax <= 0.0 && umax + am * r->ts < 0.0 && (umax < 0.0 || am < 0.0))
+                r->a = am;
+            else
+                return gf_fail(GF_EINVAL, "riemann_start: with friction the flow must move one way until t_s = "
+                                          "%g, but its velocities span [%g, %g] at t = 0 and the net "
+                                          "accelerations are %g (moving right) and %g (moving left); friction "
+                                          "holds the reservoir, or the fronts move apart", r->ts, umin, umax,
+                               ap, am);
+        }
+    }
+    /* the solution at t_s: fans that have not met, inside the domain, and a
+     * reservoir that reaches a wall only at rest */
+    const double sh = 0.5 * r->a * r->ts * r->ts;
+    if (r->has[0] && r->has[1] && !(xr - xl > 2.0 * cw * r->ts))
+        return gf_fail(GF_EDOM, "riemann_start: the two dams' fans meet before t_s = %g (wet interval [%g, %g], "
+                                "wave speed %g); use an earlier t_s", r->ts, xl, xr, cw);
+    const double ext_l = r->has[0] ? xl + sh + umin * r->ts : xr + sh + (r->uw - cw) * r->ts;
+    const double ext_r = r->has[1] ? xr + sh + umax * r->ts : xl + sh + (r->uw + cw) * r->ts;
+    if (!(ext_l > lo) || !(ext_r < hi))
+        return gf_fail(GF_EDOM, "riemann_start: at t_s = %g the dam's waves span [%g, %g], beyond the domain "
+                                "[%g, %g]; use an earlier t_s or a longer domain", r->ts, ext_l, ext_r, lo, hi);
+    for (int side = 0; side < 2; ++side)
+        if (!r->has[side] && (side ? c->bc_right : c->bc_left) == GF_BC_WALL && (r->uw != 0.0 || r->a != 0.0))
+            return gf_fail(GF_EINVAL, "riemann_start: the reservoir reaches the wall at x = %g and moves (u = %g, "
+                                      "acceleration %g), so it does not stay uniform there; use a "
+                                      "transmissive end", side ? hi : lo, r->uw, r->a);
+    for (int side = 0; side < 2; ++side)
+        if (r->has[side])
+            gf_riemann_solve(&r->dam[side], beta, side ? r->hw : 0.0, side ? r->uw : 0.0, side ? 0.0 : r->hw,
+                             side ? 0.0 : r->uw, side ? xr : xl);
+    r->mid = r->has[0] && r->has[1] ? 0.5 * (xl + xr) : r->has[1] ? -HUGE_VAL : HUGE_VAL;
+    return GF_SUCCESS;
+}
+
 gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
 {
     if (!s || !fn)
@@ -209,6 +374,14 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
     gf_sh1d_free(s->startup);
     s->startup = NULL;
     const int L = s->cfg.startup_levels;
+    if (s->cfg.riemann_start > 0.0) {
+        riemann_start r;
+        gf_status st = riemann_setup(s, fn, ctx, &r);
+        if (st || (st = s->type->set_initial(s, riemann_state, &r)))
+            return st;
+        s->t = r.ts;
+        return GF_SUCCESS;
+    }
     if (L == 0)
         return s->type->set_initial(s, fn, ctx);
     /* the finest grid starts from the initial data itself; its step bound

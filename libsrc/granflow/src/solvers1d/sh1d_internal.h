@@ -56,6 +56,10 @@ struct gf_sh1d {
 void gf_sh1d_active_range(const gf_sh1d *s, const double *h, const double *q, size_t stride, size_t *lo,
                           size_t *hi);
 
+/* The end of the initial data's wet set between a dry point and a wet one
+ * (bisection to round-off). */
+double gf_sh1d_wet_end(gf_sh1d_initial_fn fn, void *ctx, double dry, double wet);
+
 /* Inclination and curvature at x (constant zeta when no topography). */
 void gf_sh1d_bed(const gf_sh1d *s, double x, double *zeta, double *kappa);
 
