@@ -136,7 +136,8 @@ typedef struct gf_sh1d_config {
                                 expansion.  Then, until the fans meet or reach a boundary,
                                 the exact solution is Ritter's fan of each dam (the
                                 homogeneous dry-bed Riemann problem) in the frame that the
-                                source accelerates uniformly (Mangeney et al. 2000).
+                                source accelerates uniformly (Mangeney, Heinrich & Roche
+                                2000).
                                 Instead of the start-up refinement (not with
                                 startup_levels), and without a start-up error: a dam
                                 break's first steps, while its fan spans a few cells,

@@ -229,7 +229,9 @@ double gf_sh1d_wet_end(gf_sh1d_initial_fn fn, void *ctx, double dry, double wet)
  * t_s.  In the frame X = x - a t^2 / 2, U = u - a t that the source
  * accelerates uniformly (a = g sin zeta - sgn(u) tau / h, constant under
  * the conditions riemann_setup checks) the equations are homogeneous
- * (Mangeney et al. 2000), and each dam's solution is Ritter's (the dry-bed
+ * (Mangeney, Heinrich & Roche 2000, Pure Appl. Geophys. 157; not among
+ * ../shared/papers: the transformation is checked by the incline tests
+ * against Ritter's solution), and each dam's solution is Ritter's (the dry-bed
  * Riemann problem, gf_riemann) until the fans meet. */
 typedef struct {
     gf_riemann dam[2]; /* left dam (dry on its left), right dam */
