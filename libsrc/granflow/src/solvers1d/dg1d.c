@@ -773,21 +773,12 @@ static gf_status dg_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
     if (d->ale && (gst = initial_nodes(s, d, fn, ctx)))
         return gst;
     for (size_t c = 1; c <= s->n; ++c) {
-        const double xc = gf_sh1d_cell_centre(s, c - 1);
+        double sh[MAXM], sq[MAXM];
+        if ((gst = gf_sh1d_project_cell(s, fn, ctx, gf_sh1d_cell_centre(s, c - 1), s->dx, x5, w5, 5, M, sh, sq)))
+            return gst;
         for (int m = 0; m < M; ++m) {
-            double sh = 0.0, sq = 0.0;
-            for (int g = 0; g < 5; ++g) {
-                double hv, uv;
-                const double x = xc + 0.5 * s->dx * x5[g];
-                fn(x, ctx, &hv, &uv);
-                if (!isfinite(hv) || !isfinite(uv) || hv < 0.0)
-                    return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite "
-                                            "values and h >= 0)", x, hv, uv);
-                sh += w5[g] * hv * legendre(m, x5[g]);
-                sq += w5[g] * hv * uv * legendre(m, x5[g]);
-            }
-            d->h[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sh; /* eq. 8 */
-            d->q[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sq;
+            d->h[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sh[m]; /* eq. 8 */
+            d->q[c * (size_t)M + m] = 0.5 * (2.0 * m + 1.0) * sq[m];
         }
     }
     gst = finish_state(s, d);

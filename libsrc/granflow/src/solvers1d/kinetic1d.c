@@ -135,17 +135,10 @@ static gf_status kinetic_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ct
     static const double xg[3] = {-0.774596669241483377, 0.0, 0.774596669241483377};
     static const double wg[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
     for (size_t i = 0; i < s->n; ++i) {
-        const double xc = gf_sh1d_cell_centre(s, i);
-        double hm = 0.0, qm = 0.0;
-        for (int g = 0; g < 3; ++g) {
-            double h, u;
-            fn(xc + 0.5 * s->dx * xg[g], ctx, &h, &u);
-            if (!isfinite(h) || !isfinite(u) || h < 0.0)
-                return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite "
-                                        "values and h >= 0)", xc + 0.5 * s->dx * xg[g], h, u);
-            hm += wg[g] * h;
-            qm += wg[g] * h * u;
-        }
+        double hm, qm; /* the weights sum to 1: the means */
+        gf_status st = gf_sh1d_project_cell(s, fn, ctx, gf_sh1d_cell_centre(s, i), s->dx, xg, wg, 3, 1, &hm, &qm);
+        if (st)
+            return st;
         k->h[i + 1] = hm;
         k->q[i + 1] = hm > s->cfg.h_eps ? qm : 0.0;
     }

@@ -209,6 +209,45 @@ static gf_status restrict_level(gf_sh1d *s, const gf_sh1d *fine, int m, gf_sh1d 
     return GF_SUCCESS;
 }
 
+gf_status gf_sh1d_project_cell(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx, double xc, double dx,
+                               const double *xg, const double *wg, int ng, int M, double *hm, double *qm)
+{
+    /* the pieces' ends in the cell's xi: -1, the breakpoints inside, 1 */
+    double e[6] = {-1.0};
+    int ne = 1;
+    for (int b = 0; b < s->nbreaks; ++b) {
+        const double xi = (s->breaks[b] - xc) / (0.5 * dx);
+        if (xi > -1.0 && xi < 1.0)
+            e[ne++] = xi;
+    }
+    e[ne++] = 1.0;
+    for (int i = 2; i < ne - 1; ++i) /* sort the (at most 4) inner ends */
+        for (int j = i; j > 1 && e[j] < e[j - 1]; --j) {
+            const double t = e[j];
+            e[j] = e[j - 1];
+            e[j - 1] = t;
+        }
+    for (int m = 0; m < M; ++m)
+        hm[m] = qm[m] = 0.0;
+    for (int p = 0; p + 1 < ne; ++p) {
+        const double c = 0.5 * (e[p] + e[p + 1]), r = 0.5 * (e[p + 1] - e[p]); /* 0 and 1 for one piece */
+        for (int g = 0; g < ng; ++g) {
+            const double xi = c + r * xg[g], w = r * wg[g], x = xc + 0.5 * dx * xi;
+            double h, u;
+            fn(x, ctx, &h, &u);
+            if (!isfinite(h) || !isfinite(u) || h < 0.0)
+                return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite values and h >= 0)",
+                               x, h, u);
+            for (int m = 0; m < M; ++m) {
+                const double pm = m == 0 ? 1.0 : m == 1 ? xi : 0.5 * (3.0 * xi * xi - 1.0);
+                hm[m] += w * h * pm;
+                qm[m] += w * h * u * pm;
+            }
+        }
+    }
+    return GF_SUCCESS;
+}
+
 double gf_sh1d_wet_end(gf_sh1d_initial_fn fn, void *ctx, double dry, double wet)
 {
     for (int it = 0; it < 200; ++it) {
@@ -379,7 +418,24 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
     if (s->cfg.riemann_start > 0.0) {
         riemann_start r;
         gf_status st = riemann_setup(s, fn, ctx, &r);
-        if (st || (st = s->type->set_initial(s, riemann_state, &r)))
+        if (st)
+            return st;
+        /* the fans' edges, where the solution has kinks: the projection
+         * splits its rule there, exact for the piecewise polynomial (Ritter's
+         * h is quadratic in x, q cubic) */
+        s->nbreaks = 0;
+        const double sh = 0.5 * r.a * r.ts * r.ts, c = sqrt(r.dam[r.has[1]].beta * r.hw);
+        if (r.has[0]) {
+            s->breaks[s->nbreaks++] = r.dam[0].x0 + sh + (r.uw - 2.0 * c) * r.ts;
+            s->breaks[s->nbreaks++] = r.dam[0].x0 + sh + (r.uw + c) * r.ts;
+        }
+        if (r.has[1]) {
+            s->breaks[s->nbreaks++] = r.dam[1].x0 + sh + (r.uw - c) * r.ts;
+            s->breaks[s->nbreaks++] = r.dam[1].x0 + sh + (r.uw + 2.0 * c) * r.ts;
+        }
+        st = s->type->set_initial(s, riemann_state, &r);
+        s->nbreaks = 0;
+        if (st)
             return st;
         s->t = r.ts;
         return GF_SUCCESS;

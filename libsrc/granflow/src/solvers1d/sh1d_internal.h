@@ -46,6 +46,10 @@ struct gf_sh1d {
     gf_sh1d *startup;            /* start-up refinement: the finest grid at t = 0, taken by
                                     the first step; NULL otherwise */
     double t_startup;            /* its end time (set by set_initial) */
+    /* breakpoints of the initial data being projected (the Riemann start's
+     * fan edges: kinks of a piecewise polynomial; set_initial only) */
+    double breaks[4];
+    int nbreaks;
     size_t startup_steps;
 };
 
@@ -59,6 +63,16 @@ void gf_sh1d_active_range(const gf_sh1d *s, const double *h, const double *q, si
 /* The end of the initial data's wet set between a dry point and a wet one
  * (bisection to round-off). */
 double gf_sh1d_wet_end(gf_sh1d_initial_fn fn, void *ctx, double dry, double wet);
+
+/* The Legendre moments sum_g w_g h P_m(xi_g) and sum_g w_g h u P_m(xi_g),
+ * m < M, of the initial data on the cell of centre xc and width dx, with the
+ * Gauss rule (xg, wg, ng) on [-1, 1]: the caller scales them to the L2
+ * projection's coefficients.  Where breakpoints (s->breaks) lie inside the
+ * cell the rule is applied on each piece, so that piecewise polynomial data
+ * are integrated exactly; without one, the operations are those of one rule.
+ * GF_EDOM, naming x, for a value that is not finite or a negative depth. */
+gf_status gf_sh1d_project_cell(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx, double xc, double dx,
+                               const double *xg, const double *wg, int ng, int M, double *hm, double *qm);
 
 /* Inclination and curvature at x (constant zeta when no topography). */
 void gf_sh1d_bed(const gf_sh1d *s, double x, double *zeta, double *kappa);
