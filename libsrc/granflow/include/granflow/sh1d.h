@@ -217,6 +217,14 @@ gf_status gf_sh1d_eval(const gf_sh1d *s, double x, double *h, double *u);
 /* Total mass: sum of cell means times dx. */
 double gf_sh1d_mass(const gf_sh1d *s);
 
+/* The mass that has left through the domain's ends since the initial state
+ * (gf_sh1d_set_initial; inflow counts negative): the boundary fluxes of
+ * every step, combined with the time integrator's stage weights, so that
+ * gf_sh1d_mass + gf_sh1d_outflow is the initial mass to round-off with any
+ * boundary condition (0 between walls, with periodic ends, and where the
+ * moving mesh's fronts have not reached an end). */
+double gf_sh1d_outflow(const gf_sh1d *s);
+
 /* Smallest depth over all quadrature and interface points. */
 double gf_sh1d_min_depth(const gf_sh1d *s);
 

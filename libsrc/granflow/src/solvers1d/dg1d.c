@@ -850,10 +850,12 @@ static double dg_max_dt(const gf_sh1d *s)
  * + dt v), and the cells' contents dx U combine alike (U_out = (a dx_b U_b +
  * b dx_in U_e) / dx_out), so that a uniform state stays uniform (the
  * geometric conservation law) and the mass is kept.  xin, xbase, xout: the
- * nodes (xa, xb) of hin, hb and hout. */
+ * nodes (xa, xb) of hin, hb and hout.  *out: the mass that has left through
+ * the domain's ends in the step so far, combined like the contents (out_in
+ * that of hin, 0 that of the base, the step's start). */
 static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, const double xin[2], double a,
                              const double *hb, const double *qb, const double xbase[2], double b, double dt,
-                             double *hout, double *qout, double xout[2])
+                             double *hout, double *qout, double xout[2], double out_in, double *out)
 {
     const int M = d->m;
     double ra = a, rb = b; /* weights of the base and the Euler update */
@@ -877,6 +879,10 @@ static gf_status euler_stage(gf_sh1d *s, dg *d, double *hin, double *qin, const 
         xout[1] = xe;
     } else
         rhs(s, d, hin, qin);
+    /* d(sum h_0 dx)/dt = fh[0] - fh[n]: the boundary fluxes, where computed
+     * (outside lo..hi every cell is dry and no flux passes) */
+    const double rate = (d->hi == s->n ? d->fh[s->n] : 0.0) - (d->lo == 1 ? d->fh[0] : 0.0);
+    *out = b * (out_in + dt * rate);
     for (size_t c = d->lo; c <= d->hi; ++c) {
         const size_t o = c * (size_t)M;
         double he[MAXM] = {0}, qe[MAXM] = {0};
@@ -924,9 +930,11 @@ static gf_status rk3_step(gf_sh1d *s, dg *d, double dt)
     memcpy(d->stopped0, d->stopped, d->nc);
     const double x0[2] = {d->xa, d->xb};
     double x1[2] = {d->xa, d->xb}, x2[2] = {d->xa, d->xb}, xn[2] = {d->xa, d->xb};
-    if ((st = euler_stage(s, d, d->h0, d->q0, x0, 0.0, NULL, NULL, x0, 1.0, dt, d->h1, d->q1, x1)) ||
-        (st = euler_stage(s, d, d->h1, d->q1, x1, 0.75, d->h0, d->q0, x0, 0.25, dt, d->h1, d->q1, x2)) ||
-        (st = euler_stage(s, d, d->h1, d->q1, x2, 1.0 / 3.0, d->h0, d->q0, x0, 2.0 / 3.0, dt, d->h, d->q, xn))) {
+    double o1, o2, on; /* the mass out through the ends after each stage */
+    if ((st = euler_stage(s, d, d->h0, d->q0, x0, 0.0, NULL, NULL, x0, 1.0, dt, d->h1, d->q1, x1, 0.0, &o1)) ||
+        (st = euler_stage(s, d, d->h1, d->q1, x1, 0.75, d->h0, d->q0, x0, 0.25, dt, d->h1, d->q1, x2, o1, &o2)) ||
+        (st = euler_stage(s, d, d->h1, d->q1, x2, 1.0 / 3.0, d->h0, d->q0, x0, 2.0 / 3.0, dt, d->h, d->q, xn, o2,
+                          &on))) {
         memcpy(d->h, d->h0, nm * sizeof *d->h);
         memcpy(d->q, d->q0, nm * sizeof *d->q);
         memcpy(d->moving, d->moving0, d->nc);
@@ -938,6 +946,7 @@ static gf_status rk3_step(gf_sh1d *s, dg *d, double dt)
     }
     d->xa = xn[0];
     d->xb = xn[1];
+    s->outflow += on;
     /* cells stopped by friction in the last stage are at rest */
     for (size_t c = d->lo; c <= d->hi; ++c)
         if (d->stopped[c])

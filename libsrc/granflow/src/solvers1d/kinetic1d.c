@@ -296,8 +296,9 @@ static void interface_flux(const gf_sh1d *s, kinetic *k, size_t f)
     k->f2[f] = pl[1] + nr[1];
 }
 
-/* One forward-Euler step of the scheme: (k->h, k->q) -> itself. */
-static gf_status kinetic_stage(gf_sh1d *s, double dt)
+/* One forward-Euler step of the scheme: (k->h, k->q) -> itself; *out: the
+ * mass it lets out through the domain's ends. */
+static gf_status kinetic_stage(gf_sh1d *s, double dt, double *out)
 {
     kinetic *k = s->impl;
     const size_t n = s->n;
@@ -342,6 +343,8 @@ static gf_status kinetic_stage(gf_sh1d *s, double dt)
         if (!changed)
             break;
     }
+    /* the boundary fluxes, where computed (outside lo..hi every cell is dry) */
+    *out = dt * ((k->hi == n ? k->f1[n] : 0.0) - (k->lo == 1 ? k->f1[0] : 0.0));
     for (size_t i = k->lo; i <= k->hi; ++i) {
         const double hn = k->hn[i];
         if (hn < 0.0)
@@ -391,13 +394,17 @@ static gf_status kinetic_step(gf_sh1d *s, double dt)
 {
     kinetic *k = s->impl;
     gf_sh1d_active_range(s, k->h, k->q, 1, &k->lo, &k->hi); /* for both stages */
-    if (s->cfg.kinetic_order != 2)
-        return kinetic_stage(s, dt);
+    double o1, o2;
+    gf_status st;
+    if (s->cfg.kinetic_order != 2) {
+        if (!(st = kinetic_stage(s, dt, &o1)))
+            s->outflow += o1;
+        return st;
+    }
     const size_t n = s->n;
     memcpy(k->h0, k->h, (n + 2) * sizeof *k->h);
     memcpy(k->q0, k->q, (n + 2) * sizeof *k->q);
-    gf_status st;
-    if ((st = kinetic_stage(s, dt)) || (st = kinetic_stage(s, dt))) {
+    if ((st = kinetic_stage(s, dt, &o1)) || (st = kinetic_stage(s, dt, &o2))) {
         memcpy(k->h, k->h0, (n + 2) * sizeof *k->h); /* the state changes only on success */
         memcpy(k->q, k->q0, (n + 2) * sizeof *k->q);
         return st;
@@ -407,6 +414,7 @@ static gf_status kinetic_step(gf_sh1d *s, double dt)
         k->q[i] = h > s->cfg.h_eps ? 0.5 * (k->q0[i] + k->q[i]) : 0.0;
         k->h[i] = h;
     }
+    s->outflow += 0.5 * (o1 + o2); /* the mass of (u^n + E(u^(1)))/2 */
     fill_ghosts(s, k->h, k->q);
     return GF_SUCCESS;
 }

@@ -205,6 +205,7 @@ static gf_status restrict_level(gf_sh1d *s, const gf_sh1d *fine, int m, gf_sh1d 
     }
     to->t = fine->t;
     to->steps = fine->steps;
+    to->outflow = fine->outflow;
     *out = to;
     return GF_SUCCESS;
 }
@@ -409,6 +410,7 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
         return gf_fail(GF_EINVAL, "gf_sh1d_set_initial: null argument");
     s->t = 0.0;
     s->steps = 0;
+    s->outflow = 0.0;
     s->rejected = 0;
     s->startup_steps = 0;
     s->t_startup = 0.0;
@@ -635,6 +637,8 @@ double gf_sh1d_mass(const gf_sh1d *s)
         m += h[i];
     return m * s->dx;
 }
+
+double gf_sh1d_outflow(const gf_sh1d *s) { return s->outflow; }
 
 double gf_sh1d_min_depth(const gf_sh1d *s) { return s->type->min_depth(s); }
 

@@ -40,6 +40,7 @@ struct gf_sh1d {
     double x0;                   /* left end of the grid: x_min, or the moving mesh's left
                                     node (moving_mesh; dx then changes with time too) */
     size_t steps;
+    double outflow;              /* mass out through the ends since set_initial (gf_sh1d_outflow) */
     size_t rejected;             /* steps repeated with a smaller dt (positivity) */
     double *scratch;             /* 2 n: cell means for checks and diagnostics */
     void *impl;
