@@ -1160,6 +1160,23 @@ static void moving_mesh_spreading_cap(void **state)
  * front node within 4% of the front's travel behind or ahead of the exact
  * front (h = 0), 1.2% at N = 400, depths >= 0, the mass (Ritter), L1 falling with N and below
  * the fixed grid's at the same N. */
+/* The dam breaks' configuration on [0, 20], N cells: Ritter (wall at x = 0)
+ * or the Coulomb incline (35 deg, delta = 30 deg, transmissive); returns the
+ * incline frame's acceleration (0 for Ritter). */
+static double dam_config(gf_sh1d_config *c, int problem, size_t n)
+{
+    gf_sh1d_config_init(c);
+    c->n_cells = n;
+    c->x_min = 0;
+    c->x_max = 20;
+    if (problem == RITTER) {
+        c->bc_left = GF_BC_WALL;
+        return 0.0;
+    }
+    c->zeta = 35 * GF_DEG;
+    coulomb(c, 30 * GF_DEG);
+    return sin(c->zeta) - tan(30 * GF_DEG) * cos(c->zeta);
+}
 static void moving_mesh_dam_breaks(void **state)
 {
     (void)state;
@@ -1173,20 +1190,9 @@ static void moving_mesh_dam_breaks(void **state)
                 double l1[2] = {0, 0}, front = 0;
                 for (int moving = 0; moving <= 1; ++moving) {
                     gf_sh1d_config c;
-                    gf_sh1d_config_init(&c);
-                    c.n_cells = n;
-                    c.x_min = 0;
-                    c.x_max = 20;
+                    const double a = dam_config(&c, problem, n);
                     c.degree = k;
                     c.moving_mesh = moving;
-                    double a = 0.0;
-                    if (problem == RITTER)
-                        c.bc_left = GF_BC_WALL;
-                    else {
-                        c.zeta = 35 * GF_DEG;
-                        coulomb(&c, 30 * GF_DEG);
-                        a = sin(c.zeta) - tan(30 * GF_DEG) * cos(c.zeta);
-                    }
                     const double beta = cos(c.zeta);
                     gf_riemann rp;
                     assert_int_equal(gf_riemann_solve(&rp, beta, 1.0, 0.0, 0.0, 0.0, 6.0), GF_SUCCESS);
@@ -1433,24 +1439,13 @@ static double dam_break_l1(const gf_sh1d_type *t, int problem, int degree, int m
                            size_t *steps)
 {
     gf_sh1d_config c;
-    gf_sh1d_config_init(&c);
-    c.n_cells = n;
-    c.x_min = 0;
-    c.x_max = 20;
+    const double a = dam_config(&c, problem, n);
     c.moving_mesh = moving;
     c.riemann_start = ts;
     if (t == gf_sh1d_rkdg)
         c.degree = degree;
     else
         c.kinetic_order = 2;
-    double a = 0.0;
-    if (problem == RITTER)
-        c.bc_left = GF_BC_WALL;
-    else {
-        c.zeta = 35 * GF_DEG;
-        coulomb(&c, 30 * GF_DEG);
-        a = sin(c.zeta) - tan(30 * GF_DEG) * cos(c.zeta);
-    }
     const double beta = cos(c.zeta), T = 5.0;
     gf_riemann rp;
     assert_int_equal(gf_riemann_solve(&rp, beta, 1.0, 0.0, 0.0, 0.0, 6.0), GF_SUCCESS);

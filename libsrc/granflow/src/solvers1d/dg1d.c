@@ -5,6 +5,7 @@
 
 #include <gsl/gsl_integration.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -718,30 +719,13 @@ static gf_status dg_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
  * an end on the domain's boundary stays there. */
 static gf_status initial_nodes(gf_sh1d *s, dg *d, gf_sh1d_initial_fn fn, void *ctx)
 {
-    const double lo = s->cfg.x_min, hi = s->cfg.x_max;
-    const size_t ns = 16 * s->n;
-    size_t first = ns + 1, last = 0;
-    for (size_t k = 0; k <= ns; ++k) {
-        const double x = k == ns ? hi : lo + (hi - lo) * (double)k / (double)ns;
-        double h, u;
-        fn(x, ctx, &h, &u);
-        if (!isfinite(h) || !isfinite(u) || h < 0.0)
-            return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite values and h >= 0)",
-                           x, h, u);
-        if (h > 0.0) {
-            if (first > ns)
-                first = k;
-            last = k;
-        }
+    double xa, xb;
+    gf_status st = gf_sh1d_wet_interval(s, fn, ctx, &xa, &xb, &d->free_l, &d->free_r);
+    if (st) {
+        char why[512];
+        snprintf(why, sizeof why, "%s", gf_error_detail());
+        return gf_fail(st, "rkdg moving mesh (the mesh spans the wet interval): %s", why);
     }
-    if (first > ns)
-        return gf_fail(GF_EDOM, "rkdg moving mesh: the initial data are dry at every sample of [%g, %g]; "
-                                "the mesh spans the wet interval", lo, hi);
-    const double dxs = (hi - lo) / (double)ns;
-    d->free_l = first > 0;
-    d->free_r = last < ns;
-    const double xa = d->free_l ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(first - 1), lo + dxs * (double)first) : lo;
-    const double xb = d->free_r ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(last + 1), lo + dxs * (double)last) : hi;
     d->xa = xa;
     d->xb = xb;
     set_geometry(s, d, xa, xb);

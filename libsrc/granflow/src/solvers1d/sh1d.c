@@ -265,6 +265,35 @@ double gf_sh1d_wet_end(gf_sh1d_initial_fn fn, void *ctx, double dry, double wet)
     return wet;
 }
 
+gf_status gf_sh1d_wet_interval(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx, double *xl, double *xr,
+                               int *dry_l, int *dry_r)
+{
+    const double lo = s->cfg.x_min, hi = s->cfg.x_max;
+    const size_t ns = 16 * s->n;
+    size_t first = ns + 1, last = 0;
+    for (size_t k = 0; k <= ns; ++k) {
+        const double x = k == ns ? hi : lo + (hi - lo) * (double)k / (double)ns;
+        double h, u;
+        fn(x, ctx, &h, &u);
+        if (!isfinite(h) || !isfinite(u) || h < 0.0)
+            return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite values and h >= 0)",
+                           x, h, u);
+        if (h > 0.0) {
+            if (first > ns)
+                first = k;
+            last = k;
+        }
+    }
+    if (first > ns)
+        return gf_fail(GF_EDOM, "the initial data are dry at every sample of [%g, %g]", lo, hi);
+    const double dxs = (hi - lo) / (double)ns;
+    *dry_l = first > 0;
+    *dry_r = last < ns;
+    *xl = *dry_l ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(first - 1), lo + dxs * (double)first) : lo;
+    *xr = *dry_r ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(last + 1), lo + dxs * (double)last) : hi;
+    return GF_SUCCESS;
+}
+
 /* The Riemann start (config.riemann_start): the dams' exact solution at
  * t_s.  In the frame X = x - a t^2 / 2, U = u - a t that the source
  * accelerates uniformly (a = g sin zeta - sgn(u) tau / h, constant under
@@ -299,45 +328,38 @@ static void riemann_state(double x, void *ctx, double *h, double *u)
 static gf_status riemann_setup(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx, riemann_start *r)
 {
     const gf_sh1d_config *c = &s->cfg;
-    const double lo = c->x_min, hi = c->x_max;
-    const size_t ns = 16 * s->n;
-    size_t first = ns + 1, last = 0;
     memset(r, 0, sizeof *r);
-    for (size_t k = 0; k <= ns; ++k) {
-        const double x = k == ns ? hi : lo + (hi - lo) * (double)k / (double)ns;
-        double h, u;
-        fn(x, ctx, &h, &u);
-        if (!isfinite(h) || !isfinite(u) || h < 0.0)
-            return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite values and h >= 0)",
-                           x, h, u);
-        if (h > 0.0) {
-            if (first > ns) {
-                first = k;
-                r->hw = h;
-                r->uw = u;
-            }
-            if (last + 1 < k && last >= first)
-                return gf_fail(GF_EDOM, "riemann_start: the initial data are dry at x = %g between wet points; "
-                                        "a Riemann start needs one wet interval",
-                               lo + (hi - lo) * (double)(last + 1) / (double)ns);
-            last = k;
-            if (fabs(h - r->hw) > 1e-12 * r->hw || fabs(u - r->uw) > 1e-12 * (fabs(r->uw) + sqrt(r->hw)))
-                return gf_fail(GF_EDOM, "riemann_start: the initial data are not uniform on the wet side: h = %g, "
-                                        "u = %g at x = %g, h = %g, u = %g at x = %g; a dam's exact solution "
-                                        "needs a uniform reservoir", h, u, x, r->hw, r->uw,
-                               lo + (hi - lo) * (double)first / (double)ns);
-        }
-    }
-    if (first > ns)
-        return gf_fail(GF_EDOM, "riemann_start: the initial data are dry at every sample of [%g, %g]", lo, hi);
-    r->has[0] = first > 0;
-    r->has[1] = last < ns;
+    double xl, xr;
+    gf_status st = gf_sh1d_wet_interval(s, fn, ctx, &xl, &xr, &r->has[0], &r->has[1]);
+    if (st)
+        return st;
     if (!r->has[0] && !r->has[1])
         return gf_fail(GF_EDOM, "riemann_start: the initial data are wet on all of [%g, %g], so there is no "
-                                "dam (a jump to a dry bed)", lo, hi);
-    const double dxs = (hi - lo) / (double)ns;
-    const double xl = r->has[0] ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(first - 1), lo + dxs * (double)first) : lo;
-    const double xr = r->has[1] ? gf_sh1d_wet_end(fn, ctx, lo + dxs * (double)(last + 1), lo + dxs * (double)last) : hi;
+                                "dam (a jump to a dry bed)", c->x_min, c->x_max);
+    /* uniform and wet between the ends, at the same samples */
+    const size_t ns = 16 * s->n;
+    int seen = 0;
+    double x0 = xl; /* the first sample's */
+    for (size_t k = 0; k <= ns; ++k) {
+        const double x = k == ns ? c->x_max : c->x_min + (c->x_max - c->x_min) * (double)k / (double)ns;
+        if (x < xl || x > xr)
+            continue;
+        double h, u;
+        fn(x, ctx, &h, &u);
+        if (!seen) {
+            seen = 1;
+            x0 = x;
+            r->hw = h;
+            r->uw = u;
+        }
+        if (!(h > 0.0))
+            return gf_fail(GF_EDOM, "riemann_start: the initial data are dry at x = %g between wet points; "
+                                    "a Riemann start needs one wet interval", x);
+        if (fabs(h - r->hw) > 1e-12 * r->hw || fabs(u - r->uw) > 1e-12 * (fabs(r->uw) + sqrt(r->hw)))
+            return gf_fail(GF_EDOM, "riemann_start: the initial data are not uniform on the wet side: h = %g, "
+                                    "u = %g at x = %g, h = %g, u = %g at x = %g; a dam's exact solution needs a "
+                                    "uniform reservoir", h, u, x, r->hw, r->uw, x0);
+    }
     /* the wave speed: beta with the coefficient of an expansion, which must
      * be the reservoir's at rest too */
     if (gf_earth_pressure_k(&c->earth_pressure, 1.0) != gf_earth_pressure_k(&c->earth_pressure, 0.0))
@@ -347,6 +369,7 @@ static gf_status riemann_setup(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ct
     /* the velocities of the fans and the reservoir at t -> 0 */
     const double umin = r->has[0] ? r->uw - 2.0 * cw : r->uw, umax = r->has[1] ? r->uw + 2.0 * cw : r->uw;
     r->ts = c->riemann_start;
+    const double lo = c->x_min, hi = c->x_max;
     /* the source's acceleration: g sin zeta, less friction tau / h in the
      * direction of motion, which must be one way for t in (0, t_s] and tau / h
      * the same at every depth and speed the solution takes */

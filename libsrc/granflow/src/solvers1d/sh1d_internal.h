@@ -75,6 +75,13 @@ double gf_sh1d_wet_end(gf_sh1d_initial_fn fn, void *ctx, double dry, double wet)
 gf_status gf_sh1d_project_cell(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx, double xc, double dx,
                                const double *xg, const double *wg, int ng, int M, double *hm, double *qm);
 
+/* The wet interval [xl, xr] of the initial data: sampled 16 times per cell
+ * of the fixed grid (every sample checked: finite, h >= 0), its ends found
+ * by bisection where the data are dry beyond them (*dry_l, *dry_r), else
+ * the domain's ends. */
+gf_status gf_sh1d_wet_interval(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx, double *xl, double *xr,
+                               int *dry_l, int *dry_r);
+
 /* Inclination and curvature at x (constant zeta when no topography). */
 void gf_sh1d_bed(const gf_sh1d *s, double x, double *zeta, double *kappa);
 
