@@ -1338,7 +1338,7 @@ static void moving_mesh_refusals(void **state)
  *   end is not exact for a reservoir that slides in);
  *   the spreading cap leaving [-3, 3] to t = 5;
  * and the outflow 0 to round-off between walls and with periodic ends. */
-static void rp_moving(double x, void *ctx, double *h, double *u)
+static void rp_flowing(double x, void *ctx, double *h, double *u)
 {
     (void)ctx;
     *h = x <= 5.0 ? 1.0 : 0.5;
@@ -1363,7 +1363,7 @@ static void mass_balance_with_open_ends(void **state)
             gf_sh1d_config c;
             gf_sh1d_config_init(&c);
             c.n_cells = 200;
-            gf_sh1d_initial_fn init = rp_moving;
+            gf_sh1d_initial_fn init = rp_flowing;
             void *ctx = NULL;
             double T = 8.0;
             c.x_min = 0.0;

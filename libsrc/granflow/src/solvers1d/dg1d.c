@@ -51,10 +51,6 @@ typedef struct dg {
 static inline double dmin(double a, double b) { return a < b ? a : b; }
 static inline double dmax(double a, double b) { return a > b ? a : b; }
 
-static double legendre(int m, double x)
-{
-    return m == 0 ? 1.0 : m == 1 ? x : 0.5 * (3.0 * x * x - 1.0);
-}
 static double dlegendre(int m, double x) { return m == 0 ? 0.0 : m == 1 ? 1.0 : 3.0 * x; }
 
 static void dg_free(gf_sh1d *s)
@@ -114,7 +110,7 @@ static gf_status dg_init(gf_sh1d *s)
     for (int g = 0; g < d->ng; ++g) {
         gsl_integration_glfixed_point(-1.0, 1.0, (size_t)g, &d->xg[g], &d->wg[g], t);
         for (int m = 0; m < d->m; ++m) {
-            d->pg[g][m] = legendre(m, d->xg[g]);
+            d->pg[g][m] = gf_sh1d_legendre(m, d->xg[g]);
             d->dpg[g][m] = dlegendre(m, d->xg[g]);
         }
     }
@@ -703,7 +699,7 @@ static gf_status dg_restrict_from(gf_sh1d *s, const gf_sh1d *fs)
             for (int half = 0; half < 2; ++half) {
                 const size_t fc = 2 * (c - 1) + (size_t)half + 1;
                 for (int g = 0; g < 5; ++g) {
-                    const double xc = 0.5 * (x5[g] + (half ? 1.0 : -1.0)), w = 0.5 * w5[g] * legendre(m, xc);
+                    const double xc = 0.5 * (x5[g] + (half ? 1.0 : -1.0)), w = 0.5 * w5[g] * gf_sh1d_legendre(m, xc);
                     sh += w * poly(&f->h[fc * (size_t)M], M, x5[g]);
                     sq += w * poly(&f->q[fc * (size_t)M], M, x5[g]);
                 }

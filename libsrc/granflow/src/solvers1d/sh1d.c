@@ -240,7 +240,7 @@ gf_status gf_sh1d_project_cell(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ct
                 return gf_fail(GF_EDOM, "initial data at x = %g: h = %g, u = %g (need finite values and h >= 0)",
                                x, h, u);
             for (int m = 0; m < M; ++m) {
-                const double pm = m == 0 ? 1.0 : m == 1 ? xi : 0.5 * (3.0 * xi * xi - 1.0);
+                const double pm = gf_sh1d_legendre(m, xi);
                 hm[m] += w * h * pm;
                 qm[m] += w * h * u * pm;
             }
@@ -307,6 +307,8 @@ typedef struct {
     int has[2];
     double hw, uw;     /* the wet interval's uniform state */
     double a, ts, mid; /* frame acceleration, start time, where the two dams' solutions meet */
+    double edge[4];    /* the fans' edges at t_s (front and head of each dam), left to right */
+    int nedge;
 } riemann_start;
 
 static void riemann_state(double x, void *ctx, double *h, double *u)
@@ -404,13 +406,23 @@ static gf_status riemann_setup(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ct
         }
     }
     /* the solution at t_s: fans that have not met, inside the domain, and a
-     * reservoir that reaches a wall only at rest */
+     * reservoir that reaches a wall only at rest.  The fans' edges, in the
+     * bed's frame: a left dam's front (u - 2c) and head (u + c), a right
+     * dam's head (u - c) and front (u + 2c) */
     const double sh = 0.5 * r->a * r->ts * r->ts;
     if (r->has[0] && r->has[1] && !(xr - xl > 2.0 * cw * r->ts))
         return gf_fail(GF_EDOM, "riemann_start: the two dams' fans meet before t_s = %g (wet interval [%g, %g], "
                                 "wave speed %g); use an earlier t_s", r->ts, xl, xr, cw);
-    const double ext_l = r->has[0] ? xl + sh + umin * r->ts : xr + sh + (r->uw - cw) * r->ts;
-    const double ext_r = r->has[1] ? xr + sh + umax * r->ts : xl + sh + (r->uw + cw) * r->ts;
+    r->nedge = 0;
+    if (r->has[0]) {
+        r->edge[r->nedge++] = xl + sh + (r->uw - 2.0 * cw) * r->ts;
+        r->edge[r->nedge++] = xl + sh + (r->uw + cw) * r->ts;
+    }
+    if (r->has[1]) {
+        r->edge[r->nedge++] = xr + sh + (r->uw - cw) * r->ts;
+        r->edge[r->nedge++] = xr + sh + (r->uw + 2.0 * cw) * r->ts;
+    }
+    const double ext_l = r->edge[0], ext_r = r->edge[r->nedge - 1];
     if (!(ext_l > lo) || !(ext_r < hi))
         return gf_fail(GF_EDOM, "riemann_start: at t_s = %g the dam's waves span [%g, %g], beyond the domain "
                                 "[%g, %g]; use an earlier t_s or a longer domain", r->ts, ext_l, ext_r, lo, hi);
@@ -448,16 +460,8 @@ gf_status gf_sh1d_set_initial(gf_sh1d *s, gf_sh1d_initial_fn fn, void *ctx)
         /* the fans' edges, where the solution has kinks: the projection
          * splits its rule there, exact for the piecewise polynomial (Ritter's
          * h is quadratic in x, q cubic) */
-        s->nbreaks = 0;
-        const double sh = 0.5 * r.a * r.ts * r.ts, c = sqrt(r.dam[r.has[1]].beta * r.hw);
-        if (r.has[0]) {
-            s->breaks[s->nbreaks++] = r.dam[0].x0 + sh + (r.uw - 2.0 * c) * r.ts;
-            s->breaks[s->nbreaks++] = r.dam[0].x0 + sh + (r.uw + c) * r.ts;
-        }
-        if (r.has[1]) {
-            s->breaks[s->nbreaks++] = r.dam[1].x0 + sh + (r.uw - c) * r.ts;
-            s->breaks[s->nbreaks++] = r.dam[1].x0 + sh + (r.uw + 2.0 * c) * r.ts;
-        }
+        memcpy(s->breaks, r.edge, sizeof r.edge);
+        s->nbreaks = r.nedge;
         st = s->type->set_initial(s, riemann_state, &r);
         s->nbreaks = 0;
         if (st)

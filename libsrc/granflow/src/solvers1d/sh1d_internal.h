@@ -113,6 +113,13 @@ static inline double gf_sh1d_minmod3(double a, double b, double c)
 }
 static inline double gf_sh1d_minmod(double a, double b) { return gf_sh1d_minmod3(a, b, b); }
 
+/* The Legendre polynomial P_m(x), m = 0, 1, 2 (the RKDG modes, the
+ * initial projection's weights). */
+static inline double gf_sh1d_legendre(int m, double x)
+{
+    return m == 0 ? 1.0 : m == 1 ? x : 0.5 * (3.0 * x * x - 1.0);
+}
+
 /* Velocity q/h, 0 where h <= h_eps. */
 static inline double gf_sh1d_velocity(const gf_sh1d *s, double h, double q)
 {
