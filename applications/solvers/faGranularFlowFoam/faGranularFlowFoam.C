@@ -12,7 +12,11 @@ Description
           = h g - grad(K h pb)/(2 rho) + n pb/rho                       eq. 31/51, implicit
       ddt(h) + div(h Us) = 0                                            eq. 30/52, implicit
 
-    (n = faceAreaNormals, out of the terrain; the paper's n_b = -n.)  The
+    (n = faceAreaNormals, out of the terrain; the paper's n_b = -n.)  Two
+    schemes (faSolution granularFlow/scheme): explicit, the default and
+    recommended one (libgranflow's surface kernels: second-order finite
+    volume, SSP-RK2, pointwise implicit friction; explicitLoop.H), and
+    implicit, the reference scheme of the paper (implicitLoop.H): the
     three are solved in sequence and iterated to the initial-residual
     tolerances of faSolution/granularFlow with under-relaxation (section 3.6:
     the initial residual of the h equation; for Us the relative L1 change
@@ -28,7 +32,10 @@ Description
     where it acted and any time step capped by maxDeltaT are reported at the end.
 
 Usage
-    faGranularFlowFoam [-parallel]
+    faGranularFlowFoam [-parallel] [-keywords] [-version]
+
+    -keywords prints the keyword reference of every granflow dictionary
+    (Markdown, doc/keywords.md) and -version the granflow version.
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
@@ -44,6 +51,7 @@ Usage
 #include "peakFields.H"
 #include "cpuSections.H"
 
+#include "keyword.H"
 #include "keepFreedMemory.H"
 #include "clipRoundOff.H"
 
@@ -55,7 +63,13 @@ int main(int argc, char *argv[])
         "Shallow granular flow on curved 3D surfaces (Rauter-Tukovic model)"
         " with libgranflow physics"
     );
+    granflow::keyword::addOptions();   // -keywords (the keyword reference), -version
+    if (granflow::keyword::earlyOptions(argc, argv))
+    {
+        return 0;
+    }
     #include "setRootCase.H"
+    granflow::keyword::banner();
     #include "createTime.H"
     #include "createMesh.H"
     #include "createFaMesh.H"

@@ -21,6 +21,7 @@ Usage
 #include "IFstream.H"
 #include "timeSelector.H"
 #include "OFstream.H"
+#include "keyword.H"
 
 int main(int argc, char *argv[])
 {
@@ -29,7 +30,13 @@ int main(int argc, char *argv[])
     argList::addOption("direction", "vector", "runout direction (default (1 0 0))");
     argList::addOption("threshold", "scalar", "thickness of the runout level curve (0.01 m)");
     argList::addBoolOption("csv", "write every face to postProcessing/profiles/<time>.csv");
+    granflow::keyword::addOptions();   // -keywords, -version
+    if (granflow::keyword::earlyOptions(argc, argv))
+    {
+        return 0;
+    }
     #include "setRootCase.H"
+    granflow::keyword::banner();
     #include "createTime.H"
     instantList timeDirs = timeSelector::select0(runTime, args);
     #include "createMesh.H"
@@ -125,8 +132,9 @@ int main(int argc, char *argv[])
             {
                 IFstream is(bf);
                 const dictionary bd(is);
-                const scalar v0 = bd.get<scalar>("initialVolume");
-                const scalar out = bd.get<scalar>("netOutflow");
+                const granflow::keyword::table& mt = granflow::keyword::get("granflowMassBalance");
+                const scalar v0 = granflow::keyword::read<scalar>(bd, mt, "initialVolume");
+                const scalar out = granflow::keyword::read<scalar>(bd, mt, "netOutflow");
                 netOut = Foam::name(out);
                 balance = Foam::name((volume + out - v0)/max(v0, VSMALL));
             }

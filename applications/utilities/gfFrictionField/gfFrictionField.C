@@ -19,6 +19,7 @@ Usage
 #include "timeSelector.H"
 #include "uniformDimensionedFields.H"
 #include "granularModel.H"
+#include "keyword.H"
 
 int main(int argc, char *argv[])
 {
@@ -29,7 +30,13 @@ int main(int argc, char *argv[])
     );
     timeSelector::addOptions(true, false);
 
+    granflow::keyword::addOptions();   // -keywords, -version
+    if (granflow::keyword::earlyOptions(argc, argv))
+    {
+        return 0;
+    }
     #include "setRootCase.H"
+    granflow::keyword::banner();
     #include "createTime.H"
     instantList timeDirs = timeSelector::select0(runTime, args);
     #include "createMesh.H"

@@ -45,7 +45,13 @@ int main(int argc, char *argv[])
     argList::noParallel();
     argList::addOption("time", "time", "the time of the peak fields (default: the latest)");
     argList::addOption("threshold", "scalar", "hPeak of the affected-area outline [m] (0.1)");
+    granflow::keyword::addOptions();   // -keywords, -version
+    if (granflow::keyword::earlyOptions(argc, argv))
+    {
+        return 0;
+    }
     #include "setRootCase.H"
+    granflow::keyword::banner();
     #include "createTime.H"
     const instantList times = runTime.times();
     if (args.found("time"))
@@ -68,11 +74,7 @@ int main(int argc, char *argv[])
     (
         IOobject("terrainProperties", runTime.constant(), mesh, IOobject::MUST_READ, IOobject::NO_WRITE)
     );
-    const granflow::terrainCase tc
-    (
-        props, runTime.path(),
-        wordList({"faces", "cellSize", "terrainArea", "elevationRange", "crs"})
-    );
+    const granflow::terrainCase tc(props, runTime.path(), granflow::keyword::get("terrainProperties"));
     if (tc.nFaces() != aMesh.nFaces())
     {
         FatalErrorInFunction
@@ -84,7 +86,10 @@ int main(int argc, char *argv[])
     (
         IOobject("granularProperties", runTime.constant(), mesh, IOobject::MUST_READ, IOobject::NO_WRITE)
     );
-    const scalar rho = granularProperties.get<scalar>("rho");
+    const scalar rho = granflow::keyword::read<scalar>
+    (
+        granularProperties, granflow::keyword::get("granularProperties"), "rho"
+    );
 
     auto readPeak = [&](const word& name)
     {
@@ -176,6 +181,7 @@ int main(int argc, char *argv[])
 
     // the mass balance at every written time
     OFstream massCsv(outDir/"mass.csv");
+    const granflow::keyword::table& mt = granflow::keyword::get("granflowMassBalance");
     massCsv.precision(15);
     massCsv << "time,volume,netOutflow,imbalance" << nl;
     bool first = true;
@@ -187,11 +193,12 @@ int main(int argc, char *argv[])
         if (first && t.value() > times.first().value())
         {
             // the start: the initial volume of the run
-            massCsv << times.first().value() << ',' << mb.get<scalar>("initialVolume") << ",0,0" << nl;
+            massCsv << times.first().value() << ',' << granflow::keyword::read<scalar>(mb, mt, "initialVolume") << ",0,0" << nl;
         }
         first = false;
-        massCsv << t.value() << ',' << mb.get<scalar>("volume") << ',' << mb.get<scalar>("netOutflow")
-                << ',' << mb.get<scalar>("imbalance") << nl;
+        massCsv << t.value() << ',' << granflow::keyword::read<scalar>(mb, mt, "volume") << ','
+                << granflow::keyword::read<scalar>(mb, mt, "netOutflow")
+                << ',' << granflow::keyword::read<scalar>(mb, mt, "imbalance") << nl;
     }
 
     // the centre of mass at every time step (the solver's

@@ -35,8 +35,10 @@ Description
 
     Later regions override earlier ones where they give a value; a
     sphericalCap sets h only where the sphere lies above the surface.  Writes
-    h (and Us) into the start time folder.  Unknown region types and missing
-    entries are FatalIOErrors naming them.
+    h (and Us) into the start time folder.  Every entry is read through its
+    row of the keyword tables "releaseDict" and "releaseDict/regions/<type>"
+    (keywords/keywordTables.C, doc/keywords.md): unknown region types and
+    keys, missing entries and values out of range are FatalIOErrors naming them.
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
@@ -44,11 +46,20 @@ Description
 #include "Function1.H"
 
 #include "terrainCase.H"
+#include "keyword.H"
+
+#include <algorithm>
 
 int main(int argc, char *argv[])
 {
     argList::addNote("Set the initial flow thickness h (and Us) from system/releaseDict");
+    granflow::keyword::addOptions();   // -keywords, -version
+    if (granflow::keyword::earlyOptions(argc, argv))
+    {
+        return 0;
+    }
     #include "setRootCase.H"
+    granflow::keyword::banner();
     #include "createTime.H"
     #include "createMesh.H"
     #include "createFaMesh.H"
@@ -66,9 +77,12 @@ int main(int argc, char *argv[])
     const vectorField& C = aMesh.areaCentres().primitiveField();
     const vectorField& N = aMesh.faceAreaNormals().primitiveField();
 
-    scalarField hNew(h.size(), dict.get<scalar>("default"));
+    namespace kw = granflow::keyword;
+    const kw::table& rt = kw::get("releaseDict");
+    kw::checkKeys(dict, rt);
+    scalarField hNew(h.size(), kw::read<scalar>(dict, rt, "default"));
 
-    const PtrList<entry> regions(dict.lookup("regions"));
+    const PtrList<entry> regions(kw::read<PtrList<entry>>(dict, rt, "regions"));
     for (const entry& e : regions)
     {
         if (!e.isDict())
@@ -78,11 +92,23 @@ int main(int argc, char *argv[])
         }
         const word type = e.keyword();
         const dictionary& r = e.dict();
+        const char* types[] = {"sphericalCap", "cylindricalCap", "box", "cylinder", "function", "polygons"};
+        if (std::find_if(std::begin(types), std::end(types), [&](const char* t) { return type == t; })
+            == std::end(types))
+        {
+            FatalIOErrorInFunction(dict)
+                << "Unknown region type " << type << " in system/releaseDict"
+                << "; valid types: sphericalCap, cylindricalCap, box, cylinder, function, polygons"
+                << exit(FatalIOError);
+        }
+        // every region's entries through the rows of its table: unknown keys are errors
+        const kw::table& t = kw::get("releaseDict/regions/" + type);
+        kw::checkKeys(r, t);
         label nSet = 0;
         if (type == "sphericalCap")
         {
-            const vector c = r.get<vector>("centre");
-            const scalar rad = r.get<scalar>("radius");
+            const vector c = kw::read<vector>(r, t, "centre");
+            const scalar rad = kw::read<scalar>(r, t, "radius");
             forAll(C, i)
             {
                 // s >= 0 with |C + s n - c| = r: thickness along the normal
@@ -102,8 +128,8 @@ int main(int argc, char *argv[])
         }
         else if (type == "cylindricalCap")
         {
-            const vector p1 = r.get<vector>("point1"), p2 = r.get<vector>("point2");
-            const scalar rad = r.get<scalar>("radius");
+            const vector p1 = kw::read<vector>(r, t, "point1"), p2 = kw::read<vector>(r, t, "point2");
+            const scalar rad = kw::read<scalar>(r, t, "radius");
             if (mag(p2 - p1) < SMALL)
             {
                 FatalIOErrorInFunction(r) << "point1 and point2 coincide" << exit(FatalIOError);
@@ -129,8 +155,8 @@ int main(int argc, char *argv[])
         }
         else if (type == "box")
         {
-            const boundBox bb(r.get<vector>("min"), r.get<vector>("max"));
-            const scalar v = r.get<scalar>("value");
+            const boundBox bb(kw::read<vector>(r, t, "min"), kw::read<vector>(r, t, "max"));
+            const scalar v = kw::read<scalar>(r, t, "value");
             forAll(C, i)
             {
                 if (bb.contains(C[i]))
@@ -142,8 +168,8 @@ int main(int argc, char *argv[])
         }
         else if (type == "cylinder")
         {
-            const vector p1 = r.get<vector>("point1"), p2 = r.get<vector>("point2");
-            const scalar rad = r.get<scalar>("radius"), v = r.get<scalar>("value");
+            const vector p1 = kw::read<vector>(r, t, "point1"), p2 = kw::read<vector>(r, t, "point2");
+            const scalar rad = kw::read<scalar>(r, t, "radius"), v = kw::read<scalar>(r, t, "value");
             const vector ax = (p2 - p1)/mag(p2 - p1);
             forAll(C, i)
             {
@@ -158,51 +184,30 @@ int main(int argc, char *argv[])
         }
         else if (type == "function")
         {
-            const word coord = r.get<word>("coordinate");
+            const word coord = kw::read<word>(r, t, "coordinate");
             autoPtr<Function1<scalar>> f = Function1<scalar>::New("h", r);
-            const vector origin = r.getOrDefault<vector>("origin", Zero);
+            const vector origin = kw::read<vector>(r, t, "origin");
             forAll(C, i)
             {
                 scalar x = 0;
                 if (coord == "x") x = C[i].x();
                 else if (coord == "y") x = C[i].y();
                 else if (coord == "z") x = C[i].z();
-                else if (coord == "distance") x = mag(C[i] - origin);
-                else
-                {
-                    FatalIOErrorInFunction(r)
-                        << "Invalid entry coordinate " << coord << "; valid: x, y, z, distance"
-                        << exit(FatalIOError);
-                }
+                else x = mag(C[i] - origin);   // distance (the row's choices)
                 hNew[i] = f->value(x);
                 ++nSet;
             }
         }
         else if (type == "polygons")
         {
-            for (const word& k : r.toc())
-            {
-                if (k != "file" && k != "attribute" && k != "value" && k != "measured")
-                {
-                    FatalIOErrorInFunction(r)
-                        << "Unknown entry " << k << " of region polygons; valid entries: file,"
-                        << " attribute or value, measured" << exit(FatalIOError);
-                }
-            }
-            if (r.found("attribute") && r.found("value"))
+            if (kw::found(r, t, "attribute") && kw::found(r, t, "value"))
             {
                 FatalIOErrorInFunction(r)
                     << "region polygons takes one of attribute (a numeric field of the polygons,"
                     << " default thickness) and value (a thickness for all) [m], not both"
                     << exit(FatalIOError);
             }
-            const word measured = r.getOrDefault<word>("measured", "normal");
-            if (measured != "normal" && measured != "vertical")
-            {
-                FatalIOErrorInFunction(r)
-                    << "Invalid entry measured " << measured << " of region polygons: allowed"
-                    << " normal (thickness along the terrain normal) or vertical" << exit(FatalIOError);
-            }
+            const word measured = kw::read<word>(r, t, "measured");
             IOobject tio("terrainProperties", runTime.constant(), mesh, IOobject::MUST_READ);
             if (!tio.typeHeaderOk<IOdictionary>(false))
             {
@@ -212,12 +217,13 @@ int main(int argc, char *argv[])
                     << " coordinates and the mesh" << exit(FatalIOError);
             }
             const IOdictionary terrain(tio);
-            const vector offset = terrain.get<vector>("offset");
-            const fileName file = r.get<fileName>("file");
+            const kw::table& tp = kw::get("terrainProperties");
+            const vector offset = kw::read<vector>(terrain, tp, "offset");
+            const fileName file = kw::read<fileName>(r, t, "file");
             const fileName path = granflow::terrainCase::inCase(file, runTime.path());
-            const std::string attr =
-                r.found("value") ? word() : r.getOrDefault<word>("attribute", "thickness");
-            const scalar value = r.getOrDefault<scalar>("value", 0);
+            scalar value = 0;
+            const bool byValue = kw::readIfPresent<scalar>(r, t, "value", value);
+            const std::string attr = byValue ? word() : kw::read<word>(r, t, "attribute");
             gf_polygons P;
             if (gf_polygons_read(path.c_str(), attr.empty() ? nullptr : attr.c_str(), value, &P) != GF_SUCCESS)
             {
@@ -226,7 +232,7 @@ int main(int argc, char *argv[])
                     << (attr.empty() ? word::null : word(", attribute " + attr))
                     << ") of system/releaseDict: " << gf_error_detail() << exit(FatalIOError);
             }
-            const string demCrs = terrain.getOrDefault<string>("crs", "");
+            const string demCrs = kw::read<string>(terrain, tp, "crs");
             if (demCrs.size() && !*P.wkt)
             {
                 Info<< "    polygons " << file << " have no CRS (no .prj): taken to be in the"
@@ -285,13 +291,6 @@ int main(int argc, char *argv[])
             }
             gf_polygons_free(&P);
         }
-        else
-        {
-            FatalIOErrorInFunction(dict)
-                << "Unknown region type " << type
-                << "; valid types: sphericalCap, cylindricalCap, box, cylinder, function, polygons"
-                << exit(FatalIOError);
-        }
         Info<< "    " << type << ": " << returnReduce(nSet, sumOp<label>()) << " faces" << endl;
     }
     forAll(hNew, i)
@@ -309,14 +308,15 @@ int main(int argc, char *argv[])
     Info<< "Wrote h: volume " << gSum(hNew*aMesh.S().field()) << " m3, max " << gMax(hNew)
         << " m" << endl;
 
-    if (dict.found("Us"))
+    vector u0 = Zero;
+    if (kw::readIfPresent<vector>(dict, rt, "Us", u0))
     {
         areaVectorField Us
         (
             IOobject("Us", runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE),
             aMesh
         );
-        const vector u = dict.get<vector>("Us");
+        const vector u = u0;
         Us.primitiveFieldRef() = u - N*(N & u);   // tangential part
         Us.correctBoundaryConditions();
         Us.write();

@@ -18,7 +18,7 @@ Description
     grid).
 
 Usage
-    gfTerrainMesh
+    gfTerrainMesh [-keywords] [-version]
 \*---------------------------------------------------------------------------*/
 
 #include "argList.H"
@@ -37,14 +37,20 @@ int main(int argc, char *argv[])
 {
     argList::addNote("DEM (GDAL) to a terrain-following slab mesh; top patch 'terrain' for makeFaMesh");
     argList::noParallel();
+    granflow::keyword::addOptions();   // -keywords, -version
+    if (granflow::keyword::earlyOptions(argc, argv))
+    {
+        return 0;
+    }
     #include "setRootCase.H"
+    granflow::keyword::banner();
     #include "createTime.H"
 
     IOdictionary dict
     (
         IOobject("terrainDict", runTime.system(), runTime, IOobject::MUST_READ, IOobject::NO_WRITE)
     );
-    const granflow::terrainCase tc(dict, runTime.path());
+    const granflow::terrainCase tc(dict, runTime.path(), granflow::keyword::get("terrainDict"));
     const gf_terrain_grid& g = tc.grid;
     Info<< "DEM " << tc.demFile << ": " << tc.dem.nx << " x " << tc.dem.ny << " cells of "
         << tc.dem.gt[1] << " m, " << tc.dem.n_valid << " valid" << nl

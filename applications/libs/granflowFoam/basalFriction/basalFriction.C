@@ -1,17 +1,13 @@
 #include "basalFriction.H"
 #include "error.H"
+#include "keyword.H"
 
 #include <string>
 
 Foam::granflow::basalFriction::basalFriction(const dictionary& dict, bool exactCoulomb)
 {
-    if (!dict.found("frictionLaw"))
-    {
-        FatalIOErrorInFunction(dict)
-            << "Missing entry frictionLaw; valid laws: " << gf_friction_names()
-            << exit(FatalIOError);
-    }
-    const word lawName(dict.get<word>("frictionLaw"));
+    const keyword::table& props = keyword::get("granularProperties");
+    const word lawName(keyword::read<word>(dict, props, "frictionLaw"));
     if (gf_friction_init(&law_, lawName.c_str()) != GF_SUCCESS)
     {
         FatalIOErrorInFunction(dict)
@@ -25,39 +21,18 @@ Foam::granflow::basalFriction::basalFriction(const dictionary& dict, bool exactC
     {
         return;
     }
-    if (!dict.isDict(coeffsName))
-    {
-        FatalIOErrorInFunction(dict)
-            << "Missing sub-dictionary " << coeffsName << " with the coefficients of friction law "
-            << lawName << exit(FatalIOError);
-    }
-    const dictionary& coeffs = dict.subDict(coeffsName);
-
+    // the rows of <law>Coeffs are made from libgranflow's table of the law
+    const keyword::table& ct = keyword::get("granularProperties/" + coeffsName);
+    const dictionary& coeffs = keyword::subDict(dict, props, coeffsName);
+    keyword::checkKeys(coeffs, ct);
     for (size_t i = 0; i < t.n_params; ++i)
     {
         const gf_friction_param& p = t.params[i];
-        if (!coeffs.found(p.name))
-        {
-            FatalIOErrorInFunction(coeffs)
-                << "Missing entry " << coeffsName << '/' << p.name << " (" << p.description
-                << ", unit " << p.unit << ", allowed range [" << p.min << ", " << p.max
-                << "], documented default " << p.default_value << ')' << exit(FatalIOError);
-        }
-        const scalar value = coeffs.get<scalar>(p.name);
+        const scalar value = keyword::read<scalar>(coeffs, ct, p.name);
         if (gf_friction_set(&law_, p.name, value) != GF_SUCCESS)
         {
             FatalIOErrorInFunction(coeffs)
                 << "Invalid entry " << coeffsName << '/' << p.name << ": " << gf_error_detail()
-                << exit(FatalIOError);
-        }
-    }
-    for (const word& key : coeffs.toc())
-    {
-        double unused;
-        if (gf_friction_get(&law_, key.c_str(), &unused) != GF_SUCCESS)
-        {
-            FatalIOErrorInFunction(coeffs)
-                << "Unknown entry " << coeffsName << '/' << key << ": " << gf_error_detail()
                 << exit(FatalIOError);
         }
     }

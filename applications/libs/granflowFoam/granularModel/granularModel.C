@@ -2,112 +2,35 @@
 #include "error.H"
 #include "Switch.H"
 #include "mathematicalConstants.H"
+#include "keyword.H"
 
-Foam::scalar Foam::granflow::granularModel::readScalar
-(
-    const word& key,
-    scalar lo,
-    scalar hi,
-    const scalar* deflt
-) const
+namespace
 {
-    if (!dict_.found(key))
+    const Foam::granflow::keyword::table& props()
     {
-        if (deflt)
-        {
-            return *deflt;
-        }
-        FatalIOErrorInFunction(dict_)
-            << "Missing entry " << key << " (allowed range [" << lo << ", " << hi << "])"
-            << exit(FatalIOError);
+        return Foam::granflow::keyword::get("granularProperties");
     }
-    const scalar v = dict_.get<scalar>(key);
-    if (!(v >= lo && v <= hi))
-    {
-        FatalIOErrorInFunction(dict_)
-            << "Invalid entry " << key << " " << v << ": allowed range [" << lo << ", " << hi
-            << "]" << exit(FatalIOError);
-    }
-    return v;
-}
-
-
-bool Foam::granflow::granularModel::readSwitch(const word& key, bool deflt) const
-{
-    if (!dict_.found(key))
-    {
-        return deflt;
-    }
-    const word value(dict_.get<word>(key));
-    const Switch s(value, true);
-    if (!s.valid())
-    {
-        FatalIOErrorInFunction(dict_)
-            << "Invalid entry " << key << " " << value
-            << ": allowed on/off, yes/no, true/false" << exit(FatalIOError);
-    }
-    return s;
 }
 
 
 Foam::granflow::granularModel::granularModel(const dictionary& dict, bool exactCoulomb)
 :
     dict_(dict),
-    rho_(readScalar("rho", 1e-6, 1e6)),
-    xi_(1),
-    hMin_(1e-6),
+    rho_(keyword::read<scalar>(dict, props(), "rho")),
+    xi_(keyword::read<scalar>(dict, props(), "xi")),
+    hMin_(keyword::read<scalar>(dict, props(), "hMin")),
     earthPressure_(),
     friction_(dict, exactCoulomb),
-    lateralPressure_(readSwitch("lateralPressure")),
-    centrifugalPressure_(readSwitch("centrifugalPressure")),
-    lateralPressureFeedback_(readSwitch("lateralPressureFeedback")),
-    staticFriction_(readSwitch("staticFriction", false))
+    lateralPressure_(keyword::read<bool>(dict, props(), "lateralPressure")),
+    centrifugalPressure_(keyword::read<bool>(dict, props(), "centrifugalPressure")),
+    lateralPressureFeedback_(keyword::read<bool>(dict, props(), "lateralPressureFeedback")),
+    staticFriction_(keyword::read<bool>(dict, props(), "staticFriction"))
 {
-    const scalar one = 1, tiny = 1e-6;
-    xi_ = readScalar("xi", 1e-6, 2, &one);
-    hMin_ = readScalar("hMin", 0, 1, &tiny);
-    if (!(hMin_ > 0))
-    {
-        FatalIOErrorInFunction(dict)
-            << "Invalid entry hMin " << hMin_ << ": the dry threshold must be > 0 (allowed (0, 1] m;"
-            << " faces thinner than hMin are dry, and the friction and pressure terms divide by h)"
-            << exit(FatalIOError);
-    }
-
     // every entry must be one the model reads: a misspelled key is an error,
-    // not a silently used default
-    {
-        const wordList known
-        ({
-            "rho", "xi", "hMin", "earthPressure", "savageHutterCoeffs", "frictionLaw",
-            "lateralPressure", "centrifugalPressure", "lateralPressureFeedback", "staticFriction",
-            "boundaries"
-        });
-        for (const word& key : dict.toc())
-        {
-            if (known.found(key))
-            {
-                continue;
-            }
-            // coefficients of any friction law may be kept: <law>Coeffs
-            gf_friction probe;
-            if
-            (
-                key.size() > 6 && key.ends_with("Coeffs") && dict.isDict(key)
-             && gf_friction_init(&probe, key.substr(0, key.size() - 6).c_str()) == GF_SUCCESS
-            )
-            {
-                continue;
-            }
-            FatalIOErrorInFunction(dict)
-                << "Unknown entry " << key << " in granularProperties; valid entries: rho, xi,"
-                << " hMin, earthPressure, savageHutterCoeffs, frictionLaw, <law>Coeffs (law: "
-                << gf_friction_names() << "), lateralPressure, centrifugalPressure,"
-                << " lateralPressureFeedback, staticFriction, boundaries" << exit(FatalIOError);
-        }
-    }
+    // not a silently used default (the coefficients of any law may be kept)
+    keyword::checkKeys(dict, props());
 
-    const word model(dict.getOrDefault<word>("earthPressure", "isotropic"));
+    const word model(keyword::read<word>(dict, props(), "earthPressure"));
     gf_earth_pressure_model m;
     if (gf_earth_pressure_model_from_name(model.c_str(), &m) != GF_SUCCESS)
     {
@@ -118,39 +41,12 @@ Foam::granflow::granularModel::granularModel(const dictionary& dict, bool exactC
     scalar phi = 0, delta = 0;
     if (m == GF_EARTH_PRESSURE_SAVAGE_HUTTER)
     {
-        if (!dict.isDict("savageHutterCoeffs"))
-        {
-            FatalIOErrorInFunction(dict)
-                << "earthPressure savageHutter needs the sub-dictionary savageHutterCoeffs"
-                << " with phi and delta [deg]" << exit(FatalIOError);
-        }
-        const dictionary& c = dict.subDict("savageHutterCoeffs");
-        for (const word& key : c.toc())
-        {
-            if (key != "phi" && key != "delta")
-            {
-                FatalIOErrorInFunction(c)
-                    << "Unknown entry savageHutterCoeffs/" << key
-                    << "; valid entries: phi, delta [deg]" << exit(FatalIOError);
-            }
-        }
-        for (const word key : {"phi", "delta"})
-        {
-            if (!c.found(key))
-            {
-                FatalIOErrorInFunction(c)
-                    << "Missing entry savageHutterCoeffs/" << key << " [deg]" << exit(FatalIOError);
-            }
-        }
-        phi = c.get<scalar>("phi");
-        delta = c.get<scalar>("delta");
+        const keyword::table& sh = keyword::get("granularProperties/savageHutterCoeffs");
+        const dictionary& c = keyword::subDict(dict, props(), "savageHutterCoeffs");
+        keyword::checkKeys(c, sh);
         // the ranges in the unit of the entries (the library checks radians)
-        if (!(phi > 0 && phi < 90) || !(delta >= 0 && delta < 90))
-        {
-            FatalIOErrorInFunction(c)
-                << "Invalid entries savageHutterCoeffs phi " << phi << " deg, delta " << delta
-                << " deg: allowed 0 < phi < 90 deg, 0 <= delta < 90 deg" << exit(FatalIOError);
-        }
+        phi = keyword::read<scalar>(c, sh, "phi");
+        delta = keyword::read<scalar>(c, sh, "delta");
     }
     const scalar deg = constant::mathematical::pi/180;
     if (gf_earth_pressure_init(&earthPressure_, m, phi*deg, delta*deg) != GF_SUCCESS)

@@ -1,0 +1,437 @@
+/*---------------------------------------------------------------------------*\
+    granflow — the keyword tables of the finite-area programs (keyword.H).
+
+    One table per dictionary; a row: key, type, default, allowed, unit,
+    applies to, description.  The programs read every entry through these
+    rows, and doc/keywords.md is printed from them (doc/make-keywords), so
+    a key, default or range changes here and nowhere else.  The friction
+    laws' coefficient tables are made from libgranflow's own table of laws
+    (granflow/friction.h), the single source of their ranges and units.
+    Papers: FA = finite-area-granular-3d-surfaces.md, SH = the 1D
+    Savage-Hutter papers.
+\*---------------------------------------------------------------------------*/
+#include "keyword.H"
+
+#include "granflow/friction.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace
+{
+
+using Foam::granflow::keyword::row;
+using Foam::granflow::keyword::table;
+
+std::string num(double v)
+{
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+
+// the laws with coefficients: "<law>Coeffs" rows and one table each
+std::vector<table> frictionTables()
+{
+    std::vector<table> out;
+    for (const gf_friction_type* const* t = gf_friction_types(); *t; ++t)
+    {
+        const gf_friction_type& law = **t;
+        if (law.n_params == 0) continue;
+        table tb
+        {
+            std::string("granularProperties/") + law.name + "Coeffs",
+            "constant/granularProperties", std::string(law.name) + "Coeffs/",
+            "faGranularFlowFoam, gfFrictionField",
+            std::string("Coefficients of frictionLaw ") + law.name + ": " + law.description
+          + ". Every coefficient is required (the documented value is libgranflow's"
+            " reference value, given in the message when one is missing); the ranges are"
+            " libgranflow's (granflow/friction.h).",
+            true, "", {}
+        };
+        for (size_t i = 0; i < law.n_params; ++i)
+        {
+            const gf_friction_param& p = law.params[i];
+            tb.rows.push_back
+            ({
+                p.name, "scalar", "required (" + num(p.default_value) + ")",
+                "[" + num(p.min) + ", " + num(p.max) + "]", p.unit, law.name, p.description
+            });
+        }
+        out.push_back(tb);
+    }
+    return out;
+}
+
+std::string frictionChoices()
+{
+    std::string s;
+    for (const gf_friction_type* const* t = gf_friction_types(); *t; ++t)
+    {
+        s += (s.empty() ? "" : " | ") + std::string((*t)->name);
+    }
+    return s;
+}
+
+std::vector<row> terrainRows()
+{
+    return
+    {
+        {"dem", "fileName", "required", "", "", "",
+         "digital elevation model, any raster GDAL reads (ESRI ASCII, GeoTIFF); relative to the case"},
+        {"coarsen", "label", "1", ">= 1", "", "",
+         "mesh nodes at every k-th DEM node"},
+        {"depth", "scalar", "10", "> 0", "m", "",
+         "thickness of the slab below the terrain"},
+        {"cropBox", "list", "-", "", "m", "",
+         "(xmin ymin xmax ymax): crop to a box, georeferenced coordinates"},
+        {"cropPolygons", "fileName", "-", "", "", "",
+         "crop to the faces whose centres lie inside these polygons (OGR: shapefile, GeoJSON)"},
+        {"offset", "vector", "-", "", "m", "",
+         "subtracted from the georeferenced coordinates; default the south-west corner of the"
+         " mesh nodes and their lowest elevation, rounded down to metres"},
+    };
+}
+
+std::vector<table> makeTables()
+{
+    std::vector<table> T;
+
+    // ---- constant/granularProperties ----------------------------------------
+    {
+        table t
+        {
+            "granularProperties", "constant/granularProperties", "",
+            "faGranularFlowFoam, gfFrictionField (rho: gfHazardMaps)",
+            "The granular material, the model's terms and the boundary conditions.",
+            true, "", {}
+        };
+        t.rows =
+        {
+            {"rho", "scalar", "required", "[1e-6, 1e6]", "kg/m3", "",
+             "flow (bulk) density: basal pressure pb = rho (...) (FA eq. 33) and mu(I)'s inertial number"},
+            {"xi", "scalar", "1", "[1e-6, 2]", "", "",
+             "shape factor of the convection term xi div(h Us Us) (FA eq. 31); the explicit scheme needs 1"},
+            {"hMin", "scalar", "1e-6", "(0, 1]", "m", "",
+             "dry threshold: faces thinner than hMin are dry (Us = 0; friction and pressure divide by h)"},
+            {"earthPressure", "word", "isotropic", "isotropic | savageHutter", "", "",
+             "earth-pressure coefficient K: 1, or Savage-Hutter's K_act/K_pass from phi and delta"
+             " (SH eq. 4); the explicit scheme needs isotropic"},
+            {"savageHutterCoeffs", "dictionary", "-", "", "", "savageHutter",
+             "phi and delta of earthPressure savageHutter (table below)"},
+            {"frictionLaw", "word", "required", frictionChoices(), "", "",
+             "basal friction law, evaluated by libgranflow (granflow/friction.h; FA eq. 31's nu)"},
+        };
+        for (const gf_friction_type* const* l = gf_friction_types(); *l; ++l)
+        {
+            if ((*l)->n_params == 0) continue;
+            t.rows.push_back
+            ({
+                std::string((*l)->name) + "Coeffs", "dictionary", "-", "", "", (*l)->name,
+                std::string("coefficients of frictionLaw ") + (*l)->name
+              + " (table below); those of other laws may be kept"
+            });
+        }
+        const std::vector<row> more
+        {
+            {"lateralPressure", "switch", "on", "", "", "",
+             "the lateral pressure gradient -(K/2 rho) grad(h pb) in the momentum equation (FA eq. 31)"},
+            {"centrifugalPressure", "switch", "on", "", "", "",
+             "the curvature term xi n.div(h Us Us) in the basal pressure (FA eq. 33)"},
+            {"lateralPressureFeedback", "switch", "on", "", "", "",
+             "the term n.grad(K h pb)/(2 rho) in the basal pressure (FA eq. 33)"},
+            {"staticFriction", "switch", "off", "", "", "implicit",
+             "hold faces at rest where the driving force is below the static friction bound"
+             " (off: FA eq. 51, a deposit creeps at about u0); the explicit scheme needs off"},
+            {"boundaries", "dictionary", "required", "", "", "",
+             "one sub-dictionary per area-mesh patch, boundaries/<patch> (table below)"},
+        };
+        t.rows.insert(t.rows.end(), more.begin(), more.end());
+        T.push_back(t);
+    }
+    T.push_back
+    ({
+        "granularProperties/savageHutterCoeffs", "constant/granularProperties", "savageHutterCoeffs/",
+        "faGranularFlowFoam, gfFrictionField",
+        "Internal friction and bed friction angles of earthPressure savageHutter (delta <= phi).",
+        true, "",
+        {
+            {"phi", "scalar", "required", "(0, 90)", "deg", "savageHutter", "internal friction angle"},
+            {"delta", "scalar", "required", "[0, 90)", "deg", "savageHutter",
+             "bed friction angle, at most phi"},
+        }
+    });
+    for (const table& f : frictionTables())
+    {
+        T.push_back(f);
+    }
+    T.push_back
+    ({
+        "granularProperties/boundaries/<patch>", "constant/granularProperties", "boundaries/<patch>/",
+        "faGranularFlowFoam",
+        "The boundary condition of one area-mesh patch (every non-coupled patch is listed; 0/h and"
+        " 0/Us must carry the matching patch types: wall zeroGradient/slip, outflow"
+        " zeroGradient/zeroGradient, symmetry symmetry/symmetry, inflow fixedValue/fixedValue).",
+        true, "type",
+        {
+            {"type", "word", "required", "wall | outflow | symmetry | inflow", "", "",
+             "wall: no normal flux; outflow: material leaves, nothing enters; symmetry: a symmetry"
+             " plane; inflow: a hydrograph"},
+            {"h", "Function1<scalar>", "required", ">= 0", "m", "inflow",
+             "thickness of the inflow as a function of time (table, constant, ...)"},
+            {"Us", "Function1<vector>", "required", "", "m/s", "inflow",
+             "velocity of the inflow as a function of time, made tangential to the surface"},
+        }
+    });
+
+    // ---- system/faSolution ----------------------------------------------------
+    T.push_back
+    ({
+        "faSolution", "system/faSolution", "", "faGranularFlowFoam",
+        "The finite-area solution controls: granflow's sub-dictionaries.",
+        false, "scheme",
+        {
+            {"granularFlow", "dictionary", "required", "", "", "",
+             "the scheme and its controls (table below)"},
+            {"relaxationFactors", "dictionary", "-", "", "", "implicit",
+             "OpenFOAM's; granflow reads equations/Us and equations/h (table below)"},
+        }
+    });
+    T.push_back
+    ({
+        "faSolution/granularFlow", "system/faSolution", "granularFlow/", "faGranularFlowFoam",
+        "The scheme and its controls. The implicit scheme's entries marked preset come from the"
+        " control set `controls` unless given; the log names which came from where.",
+        true, "scheme",
+        {
+            {"scheme", "word", "explicit", "implicit | explicit", "", "",
+             "explicit (recommended): second-order finite volume, SSP-RK2, pointwise implicit"
+             " friction; implicit: the reference scheme, the finite-area paper's iterated"
+             " sequence (FA section 3.6)"},
+            {"order", "label", "2", "1 | 2", "", "explicit",
+             "order of the reconstruction"},
+            {"startupLevels", "label", "0", "[0, 3]", "", "explicit",
+             "start-up refinement: the first phase of the release on meshes refined 1..startupLevels"
+             " times (0 off; only from t = 0)"},
+            {"controls", "word", "fast", "paper | fast", "", "implicit",
+             "control set: paper = FA Table 1 (50 outer iterations, residuals 1e-6, relaxation"
+             " 0.5), fast = 8 iterations, residuals 1e-4, relaxation 0.8"},
+            {"nOuterCorrectors", "label", "preset: paper 50, fast 8", ">= 1", "", "implicit",
+             "most outer (Picard) iterations per time step (FA Table 1 n_max)"},
+            {"residualUs", "scalar", "preset: paper 1e-6, fast 1e-4", "> 0", "", "implicit",
+             "convergence: relative L1 change of Us between outer iterations (FA Table 1 r_u,max)"},
+            {"residualH", "scalar", "preset: paper 1e-6, fast 1e-4", "> 0", "", "implicit",
+             "convergence: initial residual of the h equation (FA Table 1 r_h,max, section 3.6)"},
+            {"rejectResidualUs", "scalar", "1e-2", "> 0", "", "implicit",
+             "a step at the iteration cap with the Us residual above this (>= residualUs) is"
+             " repeated with half the time step"},
+            {"rejectResidualH", "scalar", "1e-4", "> 0", "", "implicit",
+             "likewise for the h residual (>= residualH)"},
+            {"maxRetries", "label", "6", ">= 0", "", "implicit",
+             "most halvings of a step that does not converge before the run stops"},
+        }
+    });
+    T.push_back
+    ({
+        "faSolution/relaxationFactors", "system/faSolution", "relaxationFactors/equations/",
+        "faGranularFlowFoam",
+        "Under-relaxation of the implicit scheme's outer iterations (OpenFOAM's lookup: a regular"
+        " expression matches too); from the control set when not given.",
+        false, "scheme",
+        {
+            {"Us", "scalar", "preset: paper 0.5, fast 0.8", "(0, 1]", "", "implicit",
+             "momentum equation (FA Table 1: 0.5); 1 = none"},
+            {"h", "scalar", "preset: paper 0.5, fast 0.8", "(0, 1]", "", "implicit",
+             "continuity equation (FA Table 1: 0.5); 1 = none"},
+        }
+    });
+
+    // ---- system/controlDict ---------------------------------------------------
+    T.push_back
+    ({
+        "controlDict", "system/controlDict", "", "faGranularFlowFoam",
+        "The solver's time-step and output entries.",
+        false, "scheme",
+        {
+            {"adjustTimeStep", "switch", "yes", "", "", "",
+             "adapt the time step to maxCo (FA eqs. 47-48); off: deltaT is kept (the explicit"
+             " scheme stops if it exceeds the stable step)"},
+            {"maxCo", "scalar", "1", "> 0", "", "implicit",
+             "Courant number of the time step (FA Table 1 C_max, eqs. 47-48)"},
+            {"maxCo", "scalar", "0.5", "(0, 0.5]", "", "explicit",
+             "Courant number of the time step; 0.5 is the positivity bound of the fluxes,"
+             " Co = dt sum_e |Le| s_e/(2 S)"},
+            {"maxDeltaT", "scalar", "1e15", "> 0", "s", "",
+             "largest time step (the default does not cap)"},
+            {"deltaT", "scalar", "required", "> 0", "s", "",
+             "initial time step (read by OpenFOAM, checked by the solver)"},
+            {"peakFields", "switch", "no", "", "", "",
+             "write hPeak and speedPeak with every time and the centre of mass"
+             " (postProcessing/centreOfMass) for gfHazardMaps"},
+        }
+    });
+
+    // ---- <time>/uniform/granflowMassBalance -------------------------------------
+    T.push_back
+    ({
+        "granflowMassBalance", "<time>/uniform/granflowMassBalance", "",
+        "faGranularFlowFoam (restart), gfFlowSummary, gfHazardMaps",
+        "Written by faGranularFlowFoam with every time: the totals of the mass balance"
+        " volume + outflow - inflow = initial, continued by a restart.",
+        true, "",
+        {
+            {"initialVolume", "scalar", "required", ">= 0", "m3", "", "volume at the start of the run"},
+            {"volume", "scalar", "required", ">= 0", "m3", "", "volume in the domain at this time"},
+            {"netOutflow", "scalar", "required", "", "m3", "", "net volume out of the domain so far"},
+            {"imbalance", "scalar", "required", "", "m3", "", "volume + netOutflow - initialVolume"},
+            {"carried", "scalar", "0", "", "m3", "",
+             "BDF2 share of the step before a restart (not attributed to a patch)"},
+            {"carriedLastStep", "scalar", "0", "", "m3", "", "its last step"},
+            {"patches", "dictionary", "required", "", "", "",
+             "per patch <patch> { type; out (net volume out); lastStep (the last step's) }"},
+        }
+    });
+    T.push_back
+    ({
+        "granflowMassBalance/patches/<patch>", "<time>/uniform/granflowMassBalance",
+        "patches/<patch>/", "faGranularFlowFoam (restart)",
+        "Written by faGranularFlowFoam: the totals of one patch.",
+        true, "",
+        {
+            {"type", "word", "required", "wall | outflow | symmetry | inflow", "", "", "its boundary type"},
+            {"out", "scalar", "required", "", "m3", "", "net volume out through the patch so far"},
+            {"lastStep", "scalar", "required", "", "m3", "", "volume out in the last step (BDF2 history)"},
+        }
+    });
+
+    // ---- gfSetRelease: system/releaseDict -----------------------------------------
+    T.push_back
+    ({
+        "releaseDict", "system/releaseDict", "", "gfSetRelease",
+        "The initial flow thickness h (and velocity Us) of the start time; later regions override"
+        " earlier ones where they give a value.",
+        true, "",
+        {
+            {"default", "scalar", "required", ">= 0", "m", "", "h outside every region"},
+            {"Us", "vector", "-", "", "m/s", "",
+             "initial velocity everywhere, made tangential (written to Us)"},
+            {"regions", "list", "required", "", "", "",
+             "( type { entries } ... ) with type sphericalCap, cylindricalCap, box, cylinder,"
+             " function or polygons (tables below)"},
+        }
+    });
+    auto region = [&T](const std::string& type, const std::string& desc, std::vector<row> rows)
+    {
+        T.push_back
+        ({
+            "releaseDict/regions/" + type, "system/releaseDict", "regions/" + type + "/",
+            "gfSetRelease", desc, true, "", rows
+        });
+    };
+    region
+    (
+        "sphericalCap",
+        "h along the face normal up to a sphere, where it lies above the surface (the FA"
+        " paper's release: centre (4 0 -1.5) in slope coordinates, radius 2).",
+        {
+            {"centre", "vector", "required", "", "m", "sphericalCap", "centre of the sphere"},
+            {"radius", "scalar", "required", "> 0", "m", "sphericalCap", "radius of the sphere"},
+        }
+    );
+    region
+    (
+        "cylindricalCap",
+        "The same with a cylinder through point1 and point2: a laterally uniform release.",
+        {
+            {"point1", "vector", "required", "", "m", "cylindricalCap", "a point of the axis"},
+            {"point2", "vector", "required", "", "m", "cylindricalCap", "another point of the axis"},
+            {"radius", "scalar", "required", "> 0", "m", "cylindricalCap", "radius of the cylinder"},
+        }
+    );
+    region
+    (
+        "box",
+        "Face centres inside an axis-aligned box get value.",
+        {
+            {"min", "vector", "required", "", "m", "box", "lower corner"},
+            {"max", "vector", "required", "", "m", "box", "upper corner"},
+            {"value", "scalar", "required", ">= 0", "m", "box", "thickness"},
+        }
+    );
+    region
+    (
+        "cylinder",
+        "Face centres within radius of the segment point1-point2 get value.",
+        {
+            {"point1", "vector", "required", "", "m", "cylinder", "start of the axis"},
+            {"point2", "vector", "required", "", "m", "cylinder", "end of the axis"},
+            {"radius", "scalar", "required", "> 0", "m", "cylinder", "radius"},
+            {"value", "scalar", "required", ">= 0", "m", "cylinder", "thickness"},
+        }
+    );
+    region
+    (
+        "function",
+        "h as any Function1 (table, polynomial, sine, ...) of one coordinate of the face centre.",
+        {
+            {"coordinate", "word", "required", "x | y | z | distance", "", "function",
+             "the argument: a coordinate, or the distance from origin"},
+            {"h", "Function1<scalar>", "required", "", "m", "function", "the thickness"},
+            {"origin", "vector", "(0 0 0)", "", "m", "function", "origin of coordinate distance"},
+        }
+    );
+    region
+    (
+        "polygons",
+        "Release polygons of a real terrain (OGR: shapefile, GeoJSON; needs"
+        " constant/terrainProperties of gfTerrainMesh for the offset): faces whose centre lies"
+        " inside a polygon get its thickness.",
+        {
+            {"file", "fileName", "required", "", "", "polygons", "the polygons, relative to the case"},
+            {"attribute", "word", "thickness", "", "", "polygons",
+             "numeric attribute of the polygons with the thickness (not with value)"},
+            {"value", "scalar", "-", ">= 0", "m", "polygons",
+             "one thickness for every polygon (instead of attribute)"},
+            {"measured", "word", "normal", "normal | vertical", "", "polygons",
+             "the thickness is along the terrain normal (h = d) or vertical (h = d cos(slope))"},
+        }
+    );
+
+    // ---- gfTerrainMesh: system/terrainDict, constant/terrainProperties --------------
+    T.push_back
+    ({
+        "terrainDict", "system/terrainDict", "", "gfTerrainMesh",
+        "A DEM to a terrain-following slab mesh whose top patch is the area mesh.",
+        true, "", terrainRows()
+    });
+    {
+        table t
+        {
+            "terrainProperties", "constant/terrainProperties", "", "gfSetRelease, gfHazardMaps",
+            "Written by gfTerrainMesh: the entries of terrainDict with the offset used, and the"
+            " mesh's derived data.",
+            true, "", terrainRows()
+        };
+        const std::vector<row> derived
+        {
+            {"faces", "label", "-", ">= 0", "", "", "faces of the area mesh (written)"},
+            {"cellSize", "scalar", "-", "> 0", "m", "", "edge length of the faces in plan (written)"},
+            {"terrainArea", "scalar", "-", ">= 0", "m2", "", "area of the terrain surface (written)"},
+            {"elevationRange", "list", "-", "", "m", "", "(zmin zmax) of the mesh nodes (written)"},
+            {"crs", "string", "\"\"", "", "", "", "coordinate reference system of the DEM, WKT (written)"},
+        };
+        t.rows.insert(t.rows.end(), derived.begin(), derived.end());
+        T.push_back(t);
+    }
+    return T;
+}
+
+} // namespace
+
+
+const std::vector<Foam::granflow::keyword::table>& Foam::granflow::keyword::all()
+{
+    static const std::vector<table> tables(makeTables());
+    return tables;
+}
