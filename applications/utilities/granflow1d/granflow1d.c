@@ -4,7 +4,12 @@
  *
  *   granflow1d CASE.ini [section.key=value ...]
  *
- * The case file schema (every key optional unless stated; angles in degrees):
+ *   granflow1d --keywords | --version
+ *
+ * Every key is read through its row of granflow1d_keys.h (default, range,
+ * choices; --keywords prints them, doc/keywords.md); a key of no row is an
+ * error.  The case file schema (every key optional unless stated; angles in
+ * degrees):
  *
  *   [model]       epsilon (1), g (1), chi (1), rho (1: flow density, used by
  *                 mu_i's inertial number), earth_pressure (isotropic |
@@ -61,6 +66,9 @@
 #include "gf_csv.h"
 #include "granflow/granflow.h"
 #include "granflow/sh1d.h"
+#include "granflow/version.h"
+
+#include "granflow1d_keys.h"
 
 #define MAXE 256
 #define MAXT 64
@@ -132,14 +140,25 @@ static entry *find(ini_data *d, const char *sec, const char *key)
     return NULL;
 }
 
+/* ---- keys: every one through its row of gf1d_keys (granflow1d_keys.h) ---- */
+static const gf1d_key *key_row(const char *sec, const char *key)
+{
+    for (size_t i = 0; i < sizeof gf1d_keys / sizeof *gf1d_keys; ++i)
+        if (!strcmp(gf1d_keys[i].section, sec) && !strcmp(gf1d_keys[i].key, key))
+            return &gf1d_keys[i];
+    fprintf(stderr, "granflow1d: internal error: [%s] %s has no row in granflow1d_keys.h\n", sec, key);
+    abort();
+}
+
+/* a string key: the value, else def (NULL: absent) */
 static const char *get_str(ini_data *d, const char *sec, const char *key, const char *def)
 {
+    key_row(sec, key);
     entry *e = find(d, sec, key);
     return e ? e->value : def;
 }
 
-
-static double get_num(ini_data *d, const char *sec, const char *key, double def, double lo, double hi)
+static double get_num_range(ini_data *d, const char *sec, const char *key, double def, double lo, double hi)
 {
     entry *e = find(d, sec, key);
     if (!e)
@@ -152,33 +171,137 @@ static double get_num(ini_data *d, const char *sec, const char *key, double def,
     return v;
 }
 
-/* an integer key: a number without fractional part, inside [lo, hi] */
-static long get_int(ini_data *d, const char *sec, const char *key, long def, long lo, long hi)
+/* a number key with its row's range and the default def (computed by the caller) */
+static double get_num_or(ini_data *d, const char *sec, const char *key, double def)
 {
+    const gf1d_key *r = key_row(sec, key);
+    return get_num_range(d, sec, key, def, r->lo, r->hi);
+}
+
+/* a number key with its row's default (NAN: "-" or "required") and range */
+static double get_num(ini_data *d, const char *sec, const char *key)
+{
+    const gf1d_key *r = key_row(sec, key);
+    double def;
+    if (!gf_parse_number(r->deflt, &def))
+        def = NAN;
+    return get_num_range(d, sec, key, def, r->lo, r->hi);
+}
+
+/* an integer key: a number without fractional part, inside the row's range */
+static long get_int(ini_data *d, const char *sec, const char *key)
+{
+    const gf1d_key *r = key_row(sec, key);
     entry *e = find(d, sec, key);
-    if (!e)
-        return def;
     double v;
+    if (!e) {
+        gf_parse_number(r->deflt, &v);
+        return (long)v;
+    }
     if (!gf_parse_number(e->value, &v) || v != floor(v))
         die("[%s] %s = '%s' is not an integer", sec, key, e->value);
-    if (v < (double)lo || v > (double)hi)
-        die("[%s] %s = %g is outside the allowed range [%ld, %ld]", sec, key, v, lo, hi);
+    if (v < r->lo || v > r->hi)
+        die("[%s] %s = %g is outside the allowed range [%ld, %ld]", sec, key, v, (long)r->lo, (long)r->hi);
     return (long)v;
 }
 
-static int get_choice(ini_data *d, const char *sec, const char *key, const char *def,
-                      const char *const *choices)
+/* a choice key: the index of the value among the row's "a | b | c" */
+static int get_choice(ini_data *d, const char *sec, const char *key)
 {
-    const char *v = get_str(d, sec, key, def);
+    const gf1d_key *r = key_row(sec, key);
+    const char *v = get_str(d, sec, key, r->deflt);
     char list[256] = "";
-    for (int i = 0; choices[i]; ++i) {
-        if (!strcmp(v, choices[i]))
+    int i = 0;
+    for (const char *c = r->allowed; *c; ++i) {
+        const size_t n = strcspn(c, " |");
+        if (strlen(v) == n && !strncmp(v, c, n))
             return i;
-        strncat(list, i ? ", " : "", sizeof list - strlen(list) - 1);
-        strncat(list, choices[i], sizeof list - strlen(list) - 1);
+        if (i)
+            strncat(list, ", ", sizeof list - strlen(list) - 1);
+        strncat(list, c, n < sizeof list - strlen(list) - 1 ? n : sizeof list - strlen(list) - 1);
+        c += n;
+        c += strspn(c, " |");
     }
     die("[%s] %s = '%s' is not one of: %s", sec, key, v, list);
     return -1;
+}
+
+/* a key of no row: the error names the file, section and key and lists the
+ * valid keys of the section (or the sections) */
+static void unknown_key(const char *sec, const char *key)
+{
+    char list[2048] = "";
+    const size_t n = sizeof gf1d_keys / sizeof *gf1d_keys;
+    for (size_t i = 0; i < n; ++i)
+        if (!strcmp(gf1d_keys[i].section, sec)) {
+            strncat(list, *list ? ", " : "", sizeof list - strlen(list) - 1);
+            strncat(list, gf1d_keys[i].key, sizeof list - strlen(list) - 1);
+        }
+    if (*list)
+        die("unknown key [%s] %s; valid keys of [%s]: %s", sec, key, sec, list);
+    for (size_t i = 0; i < n; ++i)
+        if (!i || strcmp(gf1d_keys[i].section, gf1d_keys[i - 1].section)) {
+            strncat(list, *list ? ", " : "", sizeof list - strlen(list) - 1);
+            strncat(list, gf1d_keys[i].section, sizeof list - strlen(list) - 1);
+        }
+    die("unknown section [%s] (key %s); valid sections: %s, friction", sec, key, list);
+}
+
+/* the allowed values of a row as text: the choices, the names the library
+ * knows, or the range */
+static void allowed_text(const gf1d_key *r, char *buf, size_t size)
+{
+    if (r->allowed) {
+        size_t k = 0; /* "a | b" -> "a, b" */
+        for (const char *c = r->allowed; *c && k + 2 < size; ++c)
+            if (!strncmp(c, " | ", 3)) {
+                buf[k++] = ',';
+                buf[k++] = ' ';
+                c += 2;
+            } else
+                buf[k++] = *c;
+        buf[k] = 0;
+        return;
+    }
+    if (!strcmp(r->type, "name")) {
+        snprintf(buf, size, "%s",
+                 !strcmp(r->key, "method") ? gf_sh1d_type_names()
+                 : !strcmp(r->key, "limiter") ? gf_limiter_names() : gf_friction_names());
+        return;
+    }
+    if (strcmp(r->type, "number") && strcmp(r->type, "integer"))
+        *buf = 0;
+    else if (r->lo <= -1e300 && r->hi >= 1e300)
+        snprintf(buf, size, "any");
+    else if (r->hi >= 1e300)
+        snprintf(buf, size, r->lo == 1e-300 ? "> 0" : ">= %g", r->lo);
+    else
+        snprintf(buf, size, "[%g, %g]", r->lo, r->hi);
+}
+
+/* --keywords: the rows as Markdown, a table per section (doc/keywords.md) */
+static void print_keywords(void)
+{
+    const size_t n = sizeof gf1d_keys / sizeof *gf1d_keys;
+    char allowed[512];
+    for (size_t i = 0; i < n; ++i) {
+        const gf1d_key *r = &gf1d_keys[i];
+        if (!i || strcmp(r->section, gf1d_keys[i - 1].section))
+            printf("%s### `[%s]`\n\n| key | type | default | allowed | unit | applies to | description |\n"
+                   "|---|---|---|---|---|---|---|\n", i ? "\n" : "", r->section);
+        allowed_text(r, allowed, sizeof allowed);
+        printf("| `%s` | %s | %s | %s | %s | %s | %s |\n", r->key, r->type, r->deflt, allowed, r->unit,
+               r->applies, r->description);
+    }
+    printf("\n### `[friction]`\n\nThe coefficients of the law of [model] friction (libgranflow's table of laws,"
+           " granflow/friction.h); coulomb: mu defaults to tan(delta) when [model] delta is given.\n\n"
+           "| key | type | default | allowed | unit | applies to | description |\n|---|---|---|---|---|---|---|\n");
+    for (const gf_friction_type *const *t = gf_friction_types(); *t; ++t)
+        for (size_t k = 0; k < (*t)->n_params; ++k) {
+            const gf_friction_param *p = &(*t)->params[k];
+            printf("| `%s` | number | %g | [%g, %g] | %s | %s | %s |\n", p->name, p->default_value, p->min,
+                   p->max, p->unit, (*t)->name, p->description);
+        }
 }
 
 static void lib_check(gf_status st, const char *what)
@@ -313,14 +436,13 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     gf_sh1d_config_init(&c);
 
     /* model */
-    c.epsilon = get_num(&d, "model", "epsilon", 1.0, 1e-300, 1e300);
-    c.g = get_num(&d, "model", "g", 1.0, 0.0, 1e300);
-    c.chi = get_num(&d, "model", "chi", 1.0, -1e300, 1e300);
-    c.rho = get_num(&d, "model", "rho", 1.0, 1e-6, 1e6);
-    static const char *const ep_names[] = {"isotropic", "savageHutter", NULL};
-    const int ep = get_choice(&d, "model", "earth_pressure", "isotropic", ep_names);
-    const double phi = get_num(&d, "model", "phi", NAN, 0.0, 90.0);
-    const double delta = get_num(&d, "model", "delta", NAN, 0.0, 90.0);
+    c.epsilon = get_num(&d, "model", "epsilon");
+    c.g = get_num(&d, "model", "g");
+    c.chi = get_num(&d, "model", "chi");
+    c.rho = get_num(&d, "model", "rho");
+    const int ep = get_choice(&d, "model", "earth_pressure");
+    const double phi = get_num(&d, "model", "phi");
+    const double delta = get_num(&d, "model", "delta");
     if (ep == 1 && (isnan(phi) || isnan(delta)))
         die("[model] earth_pressure = savageHutter needs phi and delta");
     {
@@ -329,7 +451,7 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
         if (st)
             die("[model] phi = %g, delta = %g: %s", phi, delta, gf_error_detail());
     }
-    const char *law = get_str(&d, "model", "friction", "none");
+    const char *law = get_str(&d, "model", "friction", key_row("model", "friction")->deflt);
     if (gf_friction_init(&c.friction, law))
         die("[model] friction: %s", gf_error_detail());
     if (!strcmp(law, "coulomb")) {
@@ -340,7 +462,7 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     }
     for (int i = 0; i < d.n; ++i)
         if (!strcmp(d.e[i].section, "friction")) {
-            const double v = get_num(&d, "friction", d.e[i].key, 0, -1e300, 1e300);
+            const double v = get_num_range(&d, "friction", d.e[i].key, 0, -1e300, 1e300); /* the law checks */
             if (gf_friction_set(&c.friction, d.e[i].key, v))
                 die("[friction] %s: %s", d.e[i].key, gf_error_detail());
         }
@@ -348,19 +470,18 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
         die("[friction]: %s", gf_error_detail());
 
     /* topography */
-    static const char *const topo_names[] = {"flat", "chute", "tabulated", NULL};
-    const int tt = get_choice(&d, "topography", "type", "flat", topo_names);
+    const int tt = get_choice(&d, "topography", "type");
     gf_topography *topo = NULL;
     if (tt == 0) {
-        c.zeta = get_num(&d, "topography", "zeta", 0.0, -89.9, 89.9) * GF_DEG;
+        c.zeta = get_num(&d, "topography", "zeta") * GF_DEG;
     } else if (tt == 1) {
-        const double z0 = get_num(&d, "topography", "zeta0", NAN, -89.9, 89.9);
+        const double z0 = get_num(&d, "topography", "zeta0");
         if (isnan(z0))
             die("[topography] type = chute needs zeta0");
         lib_check(gf_topography_chute_alloc(z0 * GF_DEG,
-                                            get_num(&d, "topography", "zeta1", 0.0, -89.9, 89.9) * GF_DEG,
-                                            get_num(&d, "topography", "x1", 17.5, -1e300, 1e300),
-                                            get_num(&d, "topography", "x2", 21.5, -1e300, 1e300), &topo),
+                                            get_num(&d, "topography", "zeta1") * GF_DEG,
+                                            get_num(&d, "topography", "x1"),
+                                            get_num(&d, "topography", "x2"), &topo),
                   "[topography]");
     } else {
         const char *path = get_str(&d, "topography", "file", NULL);
@@ -379,30 +500,28 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     c.topo = topo;
 
     /* domain */
-    c.x_min = get_num(&d, "domain", "x_min", 0.0, -1e300, 1e300);
-    c.x_max = get_num(&d, "domain", "x_max", 30.0, -1e300, 1e300);
-    c.n_cells = (size_t)get_int(&d, "domain", "cells", 256, 4, 100000000);
-    static const char *const bc_names[] = {"transmissive", "wall", "periodic", NULL};
-    c.bc_left = (gf_bc)get_choice(&d, "domain", "bc_left", "transmissive", bc_names);
-    c.bc_right = (gf_bc)get_choice(&d, "domain", "bc_right", "transmissive", bc_names);
+    c.x_min = get_num(&d, "domain", "x_min");
+    c.x_max = get_num(&d, "domain", "x_max");
+    c.n_cells = (size_t)get_int(&d, "domain", "cells");
+    c.bc_left = (gf_bc)get_choice(&d, "domain", "bc_left");
+    c.bc_right = (gf_bc)get_choice(&d, "domain", "bc_right");
 
     /* initial */
-    static const char *const shapes[] = {"dam", "box", "semicircle", "parabola", "sinusoid", "file", "cap", NULL};
     init_data ini = {0};
-    ini.shape = get_choice(&d, "initial", "shape", "dam", shapes);
-    ini.x0 = get_num(&d, "initial", "x0", 0.5 * (c.x_min + c.x_max), -1e300, 1e300);
-    ini.hl = get_num(&d, "initial", "h_left", 1.0, 0, 1e300);
-    ini.hr = get_num(&d, "initial", "h_right", 0.0, 0, 1e300);
-    ini.ul = get_num(&d, "initial", "u_left", 0.0, -1e300, 1e300);
-    ini.ur = get_num(&d, "initial", "u_right", 0.0, -1e300, 1e300);
-    ini.x1 = get_num(&d, "initial", "x1", c.x_min, -1e300, 1e300);
-    ini.x2 = get_num(&d, "initial", "x2", c.x_max, -1e300, 1e300);
-    ini.hin = get_num(&d, "initial", "h_in", 1.0, 0, 1e300);
-    ini.hout = get_num(&d, "initial", "h_out", 0.0, 0, 1e300);
-    ini.r = get_num(&d, "initial", "radius", 1.0, 0, 1e300);
-    ini.K = get_num(&d, "initial", "K", 1.0, 0, 1e300);
-    ini.l = get_num(&d, "initial", "l", 4.0, 0, 1e300);
-    ini.depth = get_num(&d, "initial", "depth", 0.0, -1e300, 1e300);
+    ini.shape = get_choice(&d, "initial", "shape");
+    ini.x0 = get_num_or(&d, "initial", "x0", 0.5 * (c.x_min + c.x_max));
+    ini.hl = get_num(&d, "initial", "h_left");
+    ini.hr = get_num(&d, "initial", "h_right");
+    ini.ul = get_num(&d, "initial", "u_left");
+    ini.ur = get_num(&d, "initial", "u_right");
+    ini.x1 = get_num_or(&d, "initial", "x1", c.x_min);
+    ini.x2 = get_num_or(&d, "initial", "x2", c.x_max);
+    ini.hin = get_num(&d, "initial", "h_in");
+    ini.hout = get_num(&d, "initial", "h_out");
+    ini.r = get_num(&d, "initial", "radius");
+    ini.K = get_num(&d, "initial", "K");
+    ini.l = get_num(&d, "initial", "l");
+    ini.depth = get_num(&d, "initial", "depth");
     if (ini.shape == FILE_SHAPE) {
         const char *path = get_str(&d, "initial", "file", NULL);
         if (!path)
@@ -419,11 +538,11 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
     }
 
     /* solver */
-    const char *mname = get_str(&d, "solver", "method", "rkdg");
+    const char *mname = get_str(&d, "solver", "method", key_row("solver", "method")->deflt);
     cs->method = gf_sh1d_type_lookup(mname);
-    get_name(&d, "solver", "method", "rkdg", cs->method != NULL, gf_sh1d_type_names());
-    c.degree = (int)get_int(&d, "solver", "degree", 2, 0, 2);
-    c.scheme = (int)get_int(&d, "solver", "scheme", 3, 1, 3);
+    get_name(&d, "solver", "method", mname, cs->method != NULL, gf_sh1d_type_names());
+    c.degree = (int)get_int(&d, "solver", "degree");
+    c.scheme = (int)get_int(&d, "solver", "scheme");
     /* the other method's keys: read and range-checked like the rest (a
      * case file can switch methods on the command line), and named on
      * stderr as not acting */
@@ -439,22 +558,22 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
                 fprintf(stderr, "granflow1d: %s: note: [solver] %s applies to method = %s, not %s; ignored\n",
                         file_name, keys[i], kinetic ? "rkdg" : "kinetic", kinetic ? "kinetic" : "rkdg");
     }
-    c.kinetic_order = (int)get_int(&d, "solver", "kinetic_order", 1, 1, 2);
-    c.cfl = get_num(&d, "solver", "cfl", 0.0, 0.0, 1.0);
-    c.dt_fixed = get_num(&d, "solver", "dt", 0.0, 0.0, 1e300);
-    static const char *const onoff[] = {"off", "on", NULL};
-    const int lim = gf_limiter_lookup(get_str(&d, "solver", "limiter", "moment"));
-    get_name(&d, "solver", "limiter", "moment", lim >= 0, gf_limiter_names());
+    c.kinetic_order = (int)get_int(&d, "solver", "kinetic_order");
+    c.cfl = get_num(&d, "solver", "cfl");
+    c.dt_fixed = get_num(&d, "solver", "dt");
+    const char *lname = get_str(&d, "solver", "limiter", key_row("solver", "limiter")->deflt);
+    const int lim = gf_limiter_lookup(lname);
+    get_name(&d, "solver", "limiter", lname, lim >= 0, gf_limiter_names());
     c.limiter = (gf_limiter)lim;
-    c.velocity_limiter = get_choice(&d, "solver", "velocity_limiter", "on", onoff);
-    c.gamma = get_num(&d, "solver", "gamma", 0.5, 1e-12, 1.0);
+    c.velocity_limiter = get_choice(&d, "solver", "velocity_limiter");
+    c.gamma = get_num(&d, "solver", "gamma");
     /* the paper's minmod is strict (M = 0); the moment limiter spares smooth extrema */
-    c.tvb_m = get_num(&d, "solver", "tvb_m", c.limiter == GF_LIMITER_MINMOD ? 0.0 : 1.0, 0.0, 1e300);
-    c.h_eps = get_num(&d, "solver", "h_eps", 1e-10, 1e-300, 1.0);
-    c.h_semi = get_num(&d, "solver", "h_semi", 1e-6, 1e-300, 1.0);
-    c.startup_levels = (int)get_int(&d, "solver", "startup_levels", 0, 0, 5);
-    c.moving_mesh = get_choice(&d, "solver", "moving_mesh", "off", onoff);
-    c.riemann_start = get_num(&d, "solver", "riemann_start", 0.0, 0.0, 1e300);
+    c.tvb_m = get_num_or(&d, "solver", "tvb_m", c.limiter == GF_LIMITER_MINMOD ? 0.0 : 1.0);
+    c.h_eps = get_num(&d, "solver", "h_eps");
+    c.h_semi = get_num(&d, "solver", "h_semi");
+    c.startup_levels = (int)get_int(&d, "solver", "startup_levels");
+    c.moving_mesh = get_choice(&d, "solver", "moving_mesh");
+    c.riemann_start = get_num(&d, "solver", "riemann_start");
     if (cs->method == gf_sh1d_kinetic)
         c.moving_mesh = 0; /* named above as not acting */
 
@@ -486,14 +605,14 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
             *dotp = 0;
     }
     cs->name = get_str(&d, "output", "name", stem);
-    cs->plot = get_choice(&d, "output", "plot", "no", (const char *const[]){"no", "yes", NULL});
-    cs->exact = get_choice(&d, "output", "exact", "no", (const char *const[]){"no", "riemann", "dressler", NULL});
-    cs->front_h = get_num(&d, "output", "front_h", 1e-3, 0.0, 1e300);
-    cs->every = get_num(&d, "output", "every", 0.0, 0.0, 1e300);
+    cs->plot = get_choice(&d, "output", "plot");
+    cs->exact = get_choice(&d, "output", "exact");
+    cs->front_h = get_num(&d, "output", "front_h");
+    cs->every = get_num(&d, "output", "every");
 
     for (int i = 0; i < d.n; ++i)
         if (!d.e[i].used)
-            die("unknown key [%s] %s (see the schema in README.md)", d.e[i].section, d.e[i].key);
+            unknown_key(d.e[i].section, d.e[i].key);
     cs->c = c;
     cs->topo = topo;
     cs->tt = tt;
@@ -682,9 +801,18 @@ int main(int argc, char **argv)
 {
     if (argc < 2 || !strcmp(argv[1], "-h") || !strcmp(argv[1], "--help")) {
         fprintf(stderr, "usage: granflow1d CASE.ini [section.key=value ...]\n"
-                        "Runs a 1D Savage-Hutter case; the schema is documented in the source header\n"
-                        "and in README.md.\n");
+                        "       granflow1d --keywords   (the keys of the case file, Markdown)\n"
+                        "       granflow1d --version\n"
+                        "Runs a 1D Savage-Hutter case; the keys are in doc/keywords.md.\n");
         return argc < 2 ? 2 : 0;
+    }
+    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-version")) {
+        printf("granflow %s (granflow1d)\n", gf_version());
+        return 0;
+    }
+    if (!strcmp(argv[1], "--keywords") || !strcmp(argv[1], "-keywords")) {
+        print_keywords();
+        return 0;
     }
     static gf1d_case cs;
     read_case(argc, argv, &cs);

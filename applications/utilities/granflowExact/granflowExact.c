@@ -5,6 +5,7 @@
  *   granflowExact dressler G H_L C X0 T                < positions
  *   granflowExact chute ZETA0 ZETA1 X1 X2              < arc lengths
  *   granflowExact table PROFILE.csv                     < arc lengths
+ *   granflowExact --version
  *
  * Reads one x per line (or the first column of a CSV with a header) on
  * standard input and prints "x,h_exact,u_exact".  BETA = g for the
@@ -27,6 +28,7 @@
 #include "gf_csv.h"
 #include "granflow/exact.h"
 #include "granflow/topography.h"
+#include "granflow/version.h"
 
 static double num(const char *s, const char *what)
 {
@@ -124,6 +126,10 @@ static int chute(char **argv)
 
 int main(int argc, char **argv)
 {
+    if (argc > 1 && (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-version"))) {
+        printf("granflow %s (granflowExact)\n", gf_version());
+        return 0;
+    }
     if ((argc == 6 && strcmp(argv[1], "chute") == 0) || (argc == 3 && strcmp(argv[1], "table") == 0))
         return chute(argv);
     static const char *rnames[] = {"BETA", "H_L", "U_L", "H_R", "U_R", "X0", "T"};

@@ -80,6 +80,12 @@ std::string join(const std::vector<std::string>& v, const char* sep, const char*
     return s;
 }
 
+// " <unit>" for messages ("" and "-": dimensionless)
+std::string unitText(const Foam::granflow::keyword::row& r)
+{
+    return r.unit.empty() || r.unit == "-" ? "" : " " + r.unit;
+}
+
 bool matches(const Foam::granflow::keyword::row& r, const std::string& variant)
 {
     return variant.empty() || r.applies.empty() || r.applies == variant;
@@ -169,7 +175,7 @@ void Foam::granflow::keyword::invalid
 {
     const std::string msg =
         "Invalid entry " + t.path + r.key + " " + value + " in " + t.file + ": allowed "
-      + allowedText(r) + (r.unit.empty() ? "" : " " + r.unit) + forVariant(t, variant)
+      + allowedText(r) + unitText(r) + forVariant(t, variant)
       + " (" + r.description + ")";
     FatalIOErrorInFunction(dict) << msg.c_str() << exit(FatalIOError);
     std::abort();
@@ -181,7 +187,7 @@ void Foam::granflow::keyword::missing(const dictionary& dict, const table& t, co
     const std::string msg =
         "Missing entry " + t.path + r.key + " in " + t.file + ": " + r.type
       + (r.allowed.empty() ? "" : ", allowed " + allowedText(r))
-      + (r.unit.empty() ? "" : " " + r.unit)
+      + unitText(r)
       + (r.deflt.compare(0, 10, "required (") == 0
          ? ", reference value " + r.deflt.substr(10, r.deflt.size() - 11) : std::string())
       + " (" + r.description + ")";
