@@ -10,6 +10,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <cmocka.h>
 
 static inline void gf_assert_close(double a, double b, double tol, const char *ea, const char *eb,
@@ -22,5 +23,22 @@ static inline void gf_assert_close(double a, double b, double tol, const char *e
     }
 }
 #define assert_close(a, b, tol) gf_assert_close((a), (b), (tol), #a, #b, __FILE__, __LINE__)
+
+/* One machine-readable line per verified quantity, read by doc/make-verification:
+ *   VERIFY|test|problem|reference|quantity|value|relation bound
+ * (value and bound %.3g; relation <, <=, >, >= or = as the test asserts it).
+ * gf_verify prints it for the calling test; the problem is a printf format. */
+static inline void gf_verify_line(const char *test, const char *reference, const char *quantity, double value,
+                                  const char *relation, double bound, const char *fmt, ...)
+{
+    char problem[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(problem, sizeof problem, fmt, ap);
+    va_end(ap);
+    printf("VERIFY|%s|%s|%s|%s|%.3g|%s %.3g\n", test, problem, reference, quantity, value, relation, bound);
+}
+#define gf_verify(reference, quantity, value, relation, bound, ...)                                         \
+    gf_verify_line(__func__, (reference), (quantity), (value), (relation), (bound), __VA_ARGS__)
 
 #endif

@@ -135,6 +135,8 @@ static void dg_orders_on_smooth_problem(void **state)
             if (prev > 0.0) {
                 const double order = log2(prev / e);
                 printf(" N=%zu L1=%.3e order %.2f;", n, e, order);
+                gf_verify("RKDG P2 on 1024 cells", "order of L1(h)", order, ">=", need[k],
+                          "smooth problem, limiters off, RKDG P%d, N = %zu -> %zu", k, n / 2, n);
                 if (order < need[k])
                     fail_msg("P%d order %.3f < %.1f between N = %zu and %zu", k, order, need[k],
                              n / 2, n);
@@ -197,6 +199,8 @@ static void riemann_problem_against_exact(void **state)
         const double e400 = riemann_error(cases[i].t, cases[i].v, 400, &ex);
         printf("  Riemann %-16s L1(h): N=100 %.4f, N=200 %.4f (bound %.3f), N=400 %.4f\n",
                cases[i].name, e100, e200, cases[i].bound, e400);
+        gf_verify("exact Riemann solution", "L1(h)", e200, "<", cases[i].bound,
+                  "Riemann problem (kinetic paper), %s, N = 200, t = 5", cases[i].name);
         assert_true(e200 < cases[i].bound);
         assert_true(e200 < e100 && e400 < e200);
     }
@@ -233,6 +237,8 @@ static void pile_stays(const gf_sh1d_type *t, int variant, double fraction, cons
     }
     printf("  pile at rest (%s, %.2f of the bound): after 10000 steps max|dh| = %.1e, max|u| = %.1e\n",
            name, fraction, dh, du);
+    gf_verify_line("admissible_pile_stays_at_rest", "at rest", "max abs dh, max abs u", fmax(dh, du), "<=", 1e-12,
+                   "pile at %.2f of the Coulomb bound, %s, 10000 steps", fraction, name);
     assert_true(du <= 1e-12);
     assert_true(dh <= 1e-12);
     gf_sh1d_free(s);
@@ -349,6 +355,8 @@ static void silo_starts_and_stops(void **state)
         assert_true(umax_early > 0.1);            /* it starts */
         assert_true(t_rest > 0.0 && t_rest < 10.0); /* and stops everywhere */
         assert_true(hmax < 2.0);                  /* having slumped */
+        gf_verify("at rest by t = 10", "time of rest", t_rest, "<", 10.0, "silo (kinetic paper), %s", cases[j].name);
+        gf_verify("initial mass", "relative mass error", dm, "<=", 1e-12, "silo (kinetic paper), %s", cases[j].name);
         assert_true(dm <= 1e-12);
         assert_true(asym <= 1e-10);
         gf_sh1d_free(s);
@@ -395,6 +403,10 @@ static void depth_nonnegative_with_dry_fronts(void **state)
         const double e = gf_sh1d_l1_error_riemann(s, &ex, 0.5);
         printf("  Ritter dry dam break %-9s: %zu steps, min h over all steps %.2e, L1(h) %.4f "
                "(bound %.3f)\n", cases[j].name, gf_sh1d_steps(s), hmin, e, cases[j].bound);
+        gf_verify("exact (Ritter)", "L1(h)", e, "<", cases[j].bound,
+                  "Ritter dam break, h = 0.5, g = 9.81, %s, N = 200, t = 0.5", cases[j].name);
+        gf_verify("h >= 0", "min h over all steps", hmin, ">=", 0.0,
+                  "Ritter dam break, h = 0.5, g = 9.81, %s, N = 200, t = 0.5", cases[j].name);
         assert_true(hmin >= 0.0);
         assert_true(e < cases[j].bound);
         gf_sh1d_free(s);
@@ -473,6 +485,10 @@ static void dressler_against_1d_solvers(void **state)
         printf("  Dressler C = 40, t = 1, %-9s: L1(h) for x < x_tip %.4f (500 cells) -> %.4f "
                "(1000, bound %.4f); front %.3f m vs Dressler %.3f m\n",
                cases[j].name, e[0], e[1], cases[j].bound, front, ex.x_front);
+        gf_verify("Dressler's first-order solution", "L1(h), x < x_tip", e[1], "<", cases[j].bound,
+                  "Dressler dam break, Chezy C = 40, %s, N = 1000, t = 1", cases[j].name);
+        gf_verify("Dressler's front", "front error in m (abs)", fabs(front - ex.x_front), "<", 0.1,
+                  "Dressler dam break, Chezy C = 40, %s, N = 1000, t = 1", cases[j].name);
         assert_true(e[1] < cases[j].bound);
         assert_true(e[1] < 0.75 * e[0]);
         assert_true(fabs(front - ex.x_front) < 0.1);
@@ -627,6 +643,10 @@ static void dry_fronts_against_exact(void **state)
                  * before the upwind flux there: P2 -4.6 and -7.2 at N = 800);
                  * cap within 0.4 cells at every N */
                 const double in_cells = p == CAP ? 0.5 : (cases[j].v == 1 ? 3.5 : 6.0);
+                gf_verify("exact front (h = 1e-3 level)", "front error in cells (abs)", fabs(err[3]), "<=", in_cells,
+                          "%s, %s, N = 800, t = 5", pname[p], cases[j].name);
+                gf_verify("exact solution", "L1(h)", l1[3], "<", 0.6 * l1[2],
+                          "%s, %s, N = 800, t = 5 (bound: 0.6 x N = 400's)", pname[p], cases[j].name);
                 assert_true(fabs(err[3]) <= in_cells);
                 if (p == CAP)
                     assert_true(fabs(err[1]) <= in_cells && fabs(err[2]) <= in_cells);
@@ -679,6 +699,10 @@ static void dry_fronts_with_startup_refinement(void **state)
                 /* within 3 cells at every N from 200 on: the absolute error
                  * is at most 3 dx, first order (below a cell the h = 1e-3
                  * crossing itself moves by fractions of a cell) */
+                gf_verify("exact front (h = 1e-3 level)", "front error in cells (abs)", fabs(err[3]), "<=", 3.0,
+                          "%s, %s, startup_levels 3, N = 800, t = 5", pname[p], cases[j].name);
+                gf_verify("exact solution", "L1(h)", l1[3], "<=", l10 / 3.0,
+                          "%s, %s, startup_levels 3, N = 800, t = 5", pname[p], cases[j].name);
                 assert_true(fabs(err[1]) <= 3.0 && fabs(err[2]) <= 3.0 && fabs(err[3]) <= 3.0);
                 assert_true(l1[3] <= l10 / 3.0);
             }
@@ -713,6 +737,8 @@ static void deep_startup_refinement_p2_past_p1(void **state)
                pname[p], e[0], l1[0], e[1], l1[1], e[2], l1[2]);
         for (int k = 0; k < 3; ++k)
             assert_true(fabs(e[k]) <= 3.0);
+        gf_verify("exact solution", "L1(h)", l1[2], "<=", 0.75 * l1[0],
+                  "%s, rkdg P2, startup_levels 4, N = 800, t = 5 (bound: 0.75 x P1's)", pname[p]);
         assert_true(l1[2] <= 0.75 * l1[0]); /* P2 below P1 at equal N (0.51, 0.65) */
         if (p == RITTER)                    /* and below P1 on twice the cells (0.73) */
             assert_true(l1[2] <= 0.85 * l1[1]);
@@ -777,10 +803,14 @@ static void resolved_ritter_front_every_scheme(void **state)
             gf_sh1d_free(s);
         }
         printf("\n");
+        gf_verify("exact front (h = 1e-3 level)", "front error in cells (abs)", fabs(err[2]), "<=", cases[j].bound800,
+                  "Ritter from its exact state at t0 = 0.5, %s, N = 800, t = 5", cases[j].name);
         assert_true(fabs(err[2]) <= cases[j].bound800);
         if (cases[j].t == gf_sh1d_rkdg && cases[j].v == 1) {
             assert_true(fabs(err[1]) <= 1.0); /* 190 cells of travel: within 1 cell */
             assert_true(l1[2] < 0.6 * l1[1] && l1[1] < 0.6 * l1[0]);
+            gf_verify("exact solution", "L1(h)", l1[2], "<=", 1e-3,
+                      "Ritter from its exact state at t0 = 0.5, %s, N = 800, t = 5", cases[j].name);
             assert_true(l1[2] <= 1e-3); /* the dam break from rest at N = 800: 9.9e-3 */
             l1_p1 = l1[2];
         }
@@ -847,6 +877,10 @@ static void p2_order_away_from_the_front(void **state)
         printf("\n");
     }
     for (int j = 1; j < 3; ++j) {
+        gf_verify("exact spreading cap", "order of L1(h), abs x < x_f / 2", log2(e[1][j - 1] / e[1][j]), ">=", 1.9,
+                  "spreading cap, t = 1, rkdg P1, N = %d -> %d", 100 << j, 200 << j);
+        gf_verify("exact spreading cap", "order of L1(h), abs x < x_f / 2", log2(e[2][j - 1] / e[2][j]), ">=", 2.8,
+                  "spreading cap, t = 1, rkdg P2, N = %d -> %d", 100 << j, 200 << j);
         assert_true(log2(e[1][j - 1] / e[1][j]) >= 1.9);
         assert_true(log2(e[2][j - 1] / e[2][j]) >= 2.8);
     }
@@ -894,6 +928,8 @@ static void kinetic_order_two(void **state)
     printf("  smooth problem, kinetic 3, N = 64 / 128 / 256: order 1 L1 %.2e %.2e %.2e (order %.2f), "
            "order 2 L1 %.2e %.2e %.2e (order %.2f)\n",
            e1[0], e1[1], e1[2], log2(e1[0] / e1[2]) / 2, e2[0], e2[1], e2[2], log2(e2[0] / e2[2]) / 2);
+    gf_verify("RKDG P2 on 1024 cells", "order of L1(h)", log2(e2[0] / e2[2]) / 2, ">=", 1.6,
+              "smooth problem, kinetic 3 order 2, N = 64 -> 256");
     assert_true(log2(e2[0] / e2[2]) / 2 >= 1.6);
     assert_true(e2[2] < 0.1 * e1[2]);
     /* Riemann problem */
@@ -901,6 +937,8 @@ static void kinetic_order_two(void **state)
     assert_int_equal(gf_riemann_solve(&ex, 0.4, 1.0, 0.0, 0.5, 0.0, 5.0), GF_SUCCESS);
     const double r1 = riemann_error(gf_sh1d_kinetic, 3, 200, &ex), r2 = riemann_error(gf_sh1d_kinetic, 13, 200, &ex);
     printf("  Riemann problem, kinetic 3, N = 200: L1 order 1 %.4f, order 2 %.4f\n", r1, r2);
+    gf_verify("exact Riemann solution", "L1(h)", r2, "<=", 0.5 * r1,
+              "Riemann problem, kinetic 3 order 2, N = 200 (bound: half of order 1's)");
     assert_true(r2 <= 0.5 * r1);
     /* dam breaks on a dry bed */
     static const char *const pname[] = {"Ritter", "Coulomb incline"};
@@ -918,6 +956,8 @@ static void kinetic_order_two(void **state)
                     assert_true(log2(l1[k - 1] / l1[k]) >= 0.9);
             }
             printf(" (order 1 at N = 800: %+.2f %.2e)\n", err1, l11);
+            gf_verify("exact solution", "L1(h)", l1[2], "<=", 0.3 * l11,
+                      "%s, kinetic %d order 2, N = 800, t = 5 (bound: 0.3 x order 1's)", pname[p], sc);
             assert_true(l1[2] <= 0.3 * l11);
             /* absolute front error: |err| dx halves from N = 800 to 1600 */
             assert_true(fabs(err[2]) / fabs(err[3]) * 2.0 >= 1.8);
@@ -929,6 +969,9 @@ static void kinetic_order_two(void **state)
             double travel, l1;
             const double e = front_error(p, gf_sh1d_kinetic, 13, ns[k], &travel, &l1);
             printf(" N=%zu %+.2f (travel %.0f) %.2e;", ns[k], e, travel, l1);
+            if (k == 3)
+                gf_verify("exact front (h = 1e-3 level)", "front error in cells (abs)", fabs(e), "<=", 3.0,
+                          "%s, kinetic 3 order 2, startup_levels 5, N = 1600, t = 5", pname[p]);
             assert_true(fabs(e) <= 3.0);
         }
         printf("\n");
@@ -1013,6 +1056,8 @@ static void p2_beats_p1_with_the_limiters_on(void **state)
         if (prev > 0.0) {
             const double order = log2(prev / e[2]);
             printf(" (P2 order %.2f)", order);
+            gf_verify("RKDG P2 on 1024 cells", "order of L1(h)", order, ">=", 2.4,
+                      "smooth problem, default limiters, RKDG P2, N = %zu -> %zu", n / 2, n);
             assert_true(order >= 2.4);
         }
         printf(";");
@@ -1080,6 +1125,10 @@ static void rkdg_cases_one_and_two(void **state)
            "steady at 24), mass error %.1e\n", h2, t2, m2);
     /* what the paper states qualitatively: both come to rest within t = 48,
      * the lower bed friction gives the shallower deposit and the earlier rest */
+    gf_verify("paper: deposit ~2.5, steady at 48", "time of rest (max abs u < 1e-3)", t1, "<=", 48.0,
+              "rkdg paper Case I (deposit max depth %.3f)", h1);
+    gf_verify("paper: deposit ~1.8, steady at 24", "time of rest (max abs u < 1e-3)", t2, "<=", t1,
+              "rkdg paper Case II (deposit max depth %.3f; bound: Case I's time)", h2);
     assert_true(t1 > 0 && t1 <= 48.0);
     assert_true(t2 > 0 && t2 <= t1);
     assert_true(h2 < h1);
@@ -1149,6 +1198,10 @@ static void moving_mesh_spreading_cap(void **state)
     const double o1 = log2(l1[0][1] / l1[0][2]), o2 = log2(l1[1][1] / l1[1][2]);
     printf("  orders 200 -> 400: P1 %.2f, P2 %.2f; P1 / P2 at N = 400: %.0f; P2 on 100 cells against P1 on "
            "400: %.2e / %.2e\n", o1, o2, l1[0][2] / l1[1][2], l1[1][0], l1[0][2]);
+    gf_verify("exact spreading cap", "order of L1(h)", o1, ">=", 1.8, "moving mesh, spreading cap, t = 5, rkdg P1, N = 200 -> 400");
+    gf_verify("exact spreading cap", "order of L1(h)", o2, ">=", 2.5, "moving mesh, spreading cap, t = 5, rkdg P2, N = 200 -> 400");
+    gf_verify("exact spreading cap", "L1(h)", l1[1][2], "<", l1[0][2] / 20.0,
+              "moving mesh, spreading cap, t = 5, rkdg P2, N = 400 (bound: P1's / 20)");
     assert_true(o1 >= 1.8);
     assert_true(o2 >= 2.5);
     assert_true(l1[1][2] < l1[0][2] / 20.0);  /* at equal N (P2 costs about 3x) */
@@ -1214,6 +1267,9 @@ static void moving_mesh_dam_breaks(void **state)
                 }
                 printf(" N %zu: L1 %.2e (fixed grid %.2e), front node %+.2f%% of the travel, %zu steps;", n,
                        l1[1], l1[0], 100 * front, steps[k][in]);
+                if (n == 400)
+                    gf_verify("exact front (h = 0)", "abs(front node error) / travel", fabs(front), "<=", 0.012,
+                              "moving mesh, %s, rkdg P%d, N = 400, t = 5", problem == RITTER ? "Ritter" : "incline", k);
                 assert_true(fabs(front) <= (n == 400 ? 0.012 : 0.04)); /* measured <= 3.1%, 0.9% at 400 */
                 assert_true(l1[1] < 0.5 * l1[0]);
                 assert_true(l1[1] < 0.7 * prev);
@@ -1405,6 +1461,10 @@ static void mass_balance_with_open_ends(void **state)
             const double m = gf_sh1d_mass(s), out = gf_sh1d_outflow(s);
             printf(" %s: outflow %.6f, balance %.1e;", problem == 0 ? "Riemann" : problem == 1 ? "incline" :
                    problem == 2 ? "cap" : problem == 3 ? "walls" : "periodic", out, (m + out - m0) / m0);
+            if (problem <= 2)
+                gf_verify("initial mass", "abs(mass + outflow - initial) / initial", fabs(m + out - m0) / m0, "<=", 1e-12,
+                          "mass balance, open ends, %s, %s", sch[i].name,
+                          problem == 0 ? "Riemann" : problem == 1 ? "incline" : "cap");
             assert_true(fabs(m + out - m0) <= 1e-12 * m0);
             if (problem <= 2)
                 assert_true(fabs(out) > 0.1); /* something left or came in */
@@ -1477,6 +1537,10 @@ static void riemann_start_dam_breaks(void **state)
                 const double l10 = dam_break_l1(gf_sh1d_rkdg, problem, k, 1, n, 0.0, &st);
                 const double l1 = dam_break_l1(gf_sh1d_rkdg, problem, k, 1, n, ts, &st);
                 printf(" N %zu: L1 %.2e (from the dam %.2e), %zu steps;", n, l1, l10, st);
+                if (n == 800)
+                    gf_verify("exact solution", "L1(h)", l1, "<", 0.3 * l10,
+                              "Riemann start at 0.2, %s, moving mesh, rkdg P%d, N = 800, t = 5 (bound: 0.3 x from the dam)",
+                              problem == RITTER ? "Ritter" : "incline", k);
                 assert_true(l1 < 0.3 * l10);
                 assert_true(l1 < prev / 2.2);
                 prev = l1;
@@ -1491,6 +1555,8 @@ static void riemann_start_dam_breaks(void **state)
     const double work = (1600.0 * (double)st2) / (3200.0 * (double)st);
     printf("  Riemann start at %g, Ritter, moving mesh: P2 on 1600 cells L1 %.2e in %zu steps, P1 on 3200 %.2e "
            "in %zu: L1 ratio %.2f, cell updates ratio %.2f\n", ts, p2, st2, p1, st, p2 / p1, work);
+    gf_verify("exact solution", "L1(h)", p2, "<", 0.95 * p1,
+              "Riemann start, Ritter, moving mesh, rkdg P2, N = 1600 (bound: 0.95 x P1 on 3200)");
     assert_true(p2 < 0.95 * p1);
     assert_true(work < 0.5);
     const double k0 = dam_break_l1(gf_sh1d_kinetic, RITTER, 0, 0, 400, 0.0, &st);

@@ -135,6 +135,8 @@ static void lake_at_rest_with_shorelines(void **state)
                 } else {
                     printf("  lake, %s, %zu faces along, t = %.1f s (1000 steps): max|dh| %.1e m, max|u| %.1e m/s\n",
                            names[scene], nx, t, dh, umax);
+                    gf_verify("lake at rest", "max abs dh / h_max", dh / hmax, "<=", 1e-12,
+                              "lake with shorelines, %s, %zu faces along, 1000 steps", names[scene], nx);
                     assert_true(dh <= 1e-12 * hmax);
                     assert_true(umax <= 1e-12 * sqrt(9.81 * hmax));
                 }
@@ -222,6 +224,7 @@ static void mass_conserved_in_a_closed_box(void **state)
     const double rel = fabs(gf_surface_volume(s) - v0) / v0;
     printf("  closed box, t = 6: volume change %.1e relative, min h %.1e, %lu steps, %lu first-order edges, "
            "round-off volume %.1e\n", rel, hmin, st.steps, st.first_order_edges, st.roundoff_volume);
+    gf_verify("initial volume", "relative volume change", rel, "<=", 1e-12, "sliding pile in a closed box, t = 6");
     assert_true(rel <= 1e-12);
     assert_true(hmin >= 0.0);
     assert_true(st.roundoff_volume <= 1e-13 * v0);
@@ -443,6 +446,7 @@ static void restart_continues_the_run_exactly(void **state)
         }
     }
     printf("  restart after 150 steps: max difference over the next 150 steps %.1e\n", dmax);
+    gf_verify("uninterrupted run", "max difference", dmax, "=", 0.0, "restart after 150 steps, next 150 steps");
     assert_true(dmax == 0.0);
     /* a negative normal acceleration is refused */
     double *bad = calloc(nf, sizeof *bad);
@@ -565,8 +569,11 @@ static void resolved_front_within_three_cells(void **state)
         printf(" N=%zu %+.2f (%.0f cells travelled);", ns[k], err[k], travel);
     }
     printf("\n");
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
+        gf_verify("exact front", "front error in cells (abs)", fabs(err[k]), "<=", 3.0,
+                  "Ritter from its exact state at t0 = 0.5 s, order 2, N = %zu, t = 5", ns[k]);
         assert_true(fabs(err[k]) <= 3.0);
+    }
     /* the absolute error (cells x dx) falls faster than first order: by
      * more than 4 over the two doublings (measured 60x) */
     const double e0 = fabs(err[0]) * 20.0 / (double)ns[0], e2 = fabs(err[2]) * 20.0 / (double)ns[2];
@@ -595,6 +602,10 @@ static void dry_fronts_against_exact(void **state)
              * (resolved_front_within_three_cells). */
             assert_true(l1[3] < 0.7 * l1[2] && l1[2] < 0.7 * l1[1]);
             if (order == 2) {
+                gf_verify("exact front", "front error in cells (abs)", fabs(err[3]), "<=", 8.0,
+                          "%s, order 2, N = 800, t = 5", incline ? "Coulomb incline" : "Ritter");
+                gf_verify("exact solution", "L1(h)", l1[3], "<", 0.2 * dam_l1_first[incline],
+                          "%s, order 2, N = 800, t = 5 (bound: 0.2 x order 1's)", incline ? "Coulomb incline" : "Ritter");
                 assert_true(fabs(err[2]) <= 9.5 && fabs(err[3]) <= 8.0);
                 assert_true(l1[3] < 0.2 * dam_l1_first[incline]);
             } else
@@ -623,6 +634,8 @@ static void startup_refinement_fronts_within_three_cells(void **state)
             if (k < 2) /* the runs without: dry_fronts_against_exact's (N = 800: 6.2e-3) */
                 dam_front_from(incline, 2, ns[k], 0.0, 0, &travel, &l10);
             printf(k < 2 ? " N=%zu %+.2f, %.1e (%.1e);" : " N=%zu %+.2f, %.1e;", ns[k], err[k], l1[k], l10);
+            gf_verify("exact front", "front error in cells (abs)", fabs(err[k]), "<=", 3.0,
+                      "%s, order 2, startup_levels 2, N = %zu, t = 5", incline ? "Coulomb incline" : "Ritter", ns[k]);
             assert_true(fabs(err[k]) <= 3.0);
             if (k < 2)
                 assert_true(l1[k] <= 0.5 * l10);

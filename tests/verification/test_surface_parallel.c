@@ -399,6 +399,10 @@ static int decomposed_equal_serial(const strip_mesh *sm, const gf_surface_config
         printf("  %s (%zu ghosts): %s; max |dh| %.1e of h_max %.2f, max |dm| %.1e of %.2f, volume %.1e; %lu "
                "first-order edges, %lu halved steps (summed over ranks)\n",
                cuts[cut], ng, rc ? "FAILED" : "finished", dh, hmax, dm, mmax, dv, fo, hv);
+        gf_verify_line(c->startup_levels ? "decomposed_startup_refinement_equals_the_serial_run"
+                                         : "decomposed_runs_equal_the_serial_run",
+                       "serial run", "max abs dh / h_max", dh / hmax, "<=", 1e-12, "%d ranks, %s%s, t = %g s", R,
+                       cuts[cut], c->startup_levels ? ", startup_levels 2" : "", t_end);
         ok = ok && rc == 0 && dh <= 1e-12 * hmax && dm <= 1e-12 * mmax && dv <= 1e-12;
     }
     gf_surface_free(s);
