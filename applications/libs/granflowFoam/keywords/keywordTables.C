@@ -218,15 +218,20 @@ std::vector<table> makeTables()
              "control set: paper = FA Table 1 (50 outer iterations, residuals 1e-6, relaxation"
              " 0.5), fast = 8 iterations, residuals 1e-4, relaxation 0.8"},
             {"nOuterCorrectors", "label", "preset: paper 50, fast 8", ">= 1", "", "implicit",
-             "most outer (Picard) iterations per time step (FA Table 1 n_max)"},
+             "outer (Picard) iterations per time step (FA Table 1 n_max); past it only while the residuals fall (maxOuterCorrectors)"},
             {"residualUs", "scalar", "preset: paper 1e-6, fast 1e-4", "> 0", "", "implicit",
              "convergence: relative L1 change of Us between outer iterations (FA Table 1 r_u,max)"},
             {"residualH", "scalar", "preset: paper 1e-6, fast 1e-4", "> 0", "", "implicit",
              "convergence: initial residual of the h equation (FA Table 1 r_h,max, section 3.6)"},
-            {"rejectResidualUs", "scalar", "1e-2", "> 0", "", "implicit",
-             "a step at the iteration cap with the Us residual above this (>= residualUs) is"
-             " repeated with half the time step"},
-            {"rejectResidualH", "scalar", "1e-4", "> 0", "", "implicit",
+            {"maxOuterCorrectors", "label", "4 x nOuterCorrectors", ">= 1", "",
+             "implicit",
+             "past nOuterCorrectors the iterations go on while the residuals keep falling, up to"
+             " this many (>= nOuterCorrectors); then the step is repeated with half the time step"},
+            {"rejectResidualUs", "scalar", "residualUs", "> 0", "", "implicit",
+             "(>= residualUs) a step whose Us residual stays above residualUs but below this is accepted (counted"
+             " and warned in the summary); by default equal to residualUs: no step is accepted"
+             " above the target"},
+            {"rejectResidualH", "scalar", "residualH", "> 0", "", "implicit",
              "likewise for the h residual (>= residualH)"},
             {"maxRetries", "label", "6", ">= 0", "", "implicit",
              "most halvings of a step that does not converge before the run stops"},
