@@ -13,7 +13,7 @@ add_compile_options(-Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -D_POSIX_
 # No contraction of a * b + c into fused multiply-adds (ISO C's default, set
 # explicitly): results do not depend on the instruction set the build uses.
 add_compile_options(-ffp-contract=off)
-# AVX2 for the surface kernel's four-lane vectors (surface.c, GCC vector
+# AVX2 for the surface kernel's four-lane vectors (src/surface/, GCC vector
 # extensions; without it they take twice the scalar code's time): AUTO
 # enables it when the building machine runs AVX2 code (granflow is built
 # where it runs; Allwmake), and then compiles for that machine's whole

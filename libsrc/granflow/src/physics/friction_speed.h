@@ -1,25 +1,16 @@
 /* The implicit friction update's speed (gf_friction_implicit_speed) as an
  * inline entry for the per-face kernels (the explicit surface scheme calls it
  * per face and stage): the argument test and the exact Coulomb law (u0 = 0)
- * inline, every other law out of line (friction.c).  Internal: not installed. */
+ * inline, every other law out of line (friction_implicit.h, .c).  Calls only
+ * down: friction_implicit.c does not include this header, and the public
+ * out-of-line entry is friction_speed.c, above it.  Internal: not installed. */
 #ifndef GRANFLOW_FRICTION_SPEED_H
 #define GRANFLOW_FRICTION_SPEED_H
 
 #include <math.h>
 
 #include "granflow/friction.h"
-
-/* the named failure for arguments outside their ranges */
-gf_status gf_friction_implicit_speed_fail(const gf_friction_state *s, double M, double dt);
-/* every law and setting but Coulomb with u0 = 0; arguments already checked */
-gf_status gf_friction_implicit_speed_laws(const gf_friction *f, const gf_friction_state *s, double M, double dt,
-                                          double *speed);
-
-/* mu p_b / rho of the Coulomb law (0 without contact) */
-static inline double gf_friction_coulomb_mp(const gf_friction *f, const gf_friction_state *s)
-{
-    return s->pb > 0.0 ? f->p[0] * s->pb / s->rho : 0.0;
-}
+#include "friction_implicit.h"
 
 /* f and s not NULL, f initialised */
 static inline gf_status gf_friction_implicit_speed_inline(const gf_friction *f, const gf_friction_state *s, double M,

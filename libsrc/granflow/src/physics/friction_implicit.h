@@ -1,0 +1,22 @@
+/* The implicit friction update's out-of-line parts (friction_implicit.c),
+ * and the primitive that they and the inline entry (friction_speed.h) both
+ * use.  Depends only on granflow/friction.h; the inline entry sits above
+ * it.  Internal: not installed. */
+#ifndef GRANFLOW_FRICTION_IMPLICIT_H
+#define GRANFLOW_FRICTION_IMPLICIT_H
+
+#include "granflow/friction.h"
+
+/* the named failure for arguments outside their ranges */
+gf_status gf_friction_implicit_speed_fail(const gf_friction_state *s, double M, double dt);
+/* every law and setting but Coulomb with u0 = 0; arguments already checked */
+gf_status gf_friction_implicit_speed_laws(const gf_friction *f, const gf_friction_state *s, double M, double dt,
+                                          double *speed);
+
+/* mu p_b / rho of the Coulomb law (0 without contact) */
+static inline double gf_friction_coulomb_mp(const gf_friction *f, const gf_friction_state *s)
+{
+    return s->pb > 0.0 ? f->p[0] * s->pb / s->rho : 0.0;
+}
+
+#endif
