@@ -112,5 +112,5 @@ int main(void)
         cmocka_unit_test(k_switches_active_passive_on_sign_of_dudx),
         cmocka_unit_test(model_names),
     };
-    return cmocka_run_group_tests_name("earth_pressure", tests, NULL, NULL);
+    return gf_run_tests("earth_pressure", tests, NULL, NULL);
 }

@@ -234,5 +234,5 @@ int main(void)
         cmocka_unit_test(dressler_rejects_bad_input),
         cmocka_unit_test(spreading_cap_solves_the_equations),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return gf_run_tests("tests", tests, NULL, NULL);
 }

@@ -373,5 +373,5 @@ int main(void)
         cmocka_unit_test(bad_coefficients_name_key_and_range),
         cmocka_unit_test(bad_state_is_an_error_not_nan),
     };
-    return cmocka_run_group_tests_name("friction", tests, NULL, NULL);
+    return gf_run_tests("friction", tests, NULL, NULL);
 }

@@ -61,5 +61,5 @@ int main(void)
         cmocka_unit_test(dimensional_form_scales_with_g),
         cmocka_unit_test(static_source_clamps_to_coulomb_bound),
     };
-    return cmocka_run_group_tests_name("source", tests, NULL, NULL);
+    return gf_run_tests("source", tests, NULL, NULL);
 }

@@ -427,7 +427,7 @@ int main(void)
         cmocka_unit_test(face_values_map_onto_the_dem_grid),
         cmocka_unit_test(outline_and_map_are_written),
     };
-    const int rc = cmocka_run_group_tests(tests, setup, teardown);
+    const int rc = gf_run_tests("tests", tests, setup, teardown);
     GDALDestroyDriverManager();
     return rc;
 }

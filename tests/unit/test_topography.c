@@ -126,5 +126,5 @@ int main(void)
         cmocka_unit_test(tabulated_linear_profile_is_exact),
         cmocka_unit_test(bad_topography_input),
     };
-    return cmocka_run_group_tests_name("topography", tests, NULL, NULL);
+    return gf_run_tests("topography", tests, NULL, NULL);
 }

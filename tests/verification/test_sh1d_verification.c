@@ -1715,7 +1715,5 @@ int main(void)
         cmocka_unit_test(riemann_start_dam_breaks),
         cmocka_unit_test(mass_balance_with_open_ends),
     };
-    if (getenv("GF_TEST_FILTER")) /* one test by name (a pattern), for a quick look */
-        cmocka_set_test_filter(getenv("GF_TEST_FILTER"));
-    return cmocka_run_group_tests_name("sh1d_verification", tests, NULL, NULL);
+    return gf_run_tests("sh1d_verification", tests, NULL, NULL);
 }

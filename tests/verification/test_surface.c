@@ -659,5 +659,5 @@ int main(void)
         cmocka_unit_test(mesh_refinement_geometry),
         cmocka_unit_test(startup_refinement_conserves_mass),
     };
-    return cmocka_run_group_tests_name("surface_verification", tests, NULL, NULL);
+    return gf_run_tests("surface_verification", tests, NULL, NULL);
 }

@@ -470,5 +470,5 @@ int main(void)
         cmocka_unit_test(decomposed_runs_equal_the_serial_run),
         cmocka_unit_test(decomposed_startup_refinement_equals_the_serial_run),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return gf_run_tests("tests", tests, NULL, NULL);
 }
