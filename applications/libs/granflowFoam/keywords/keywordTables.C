@@ -220,9 +220,12 @@ std::vector<table> makeTables()
             {"nOuterCorrectors", "label", "preset: paper 50, fast 8", ">= 1", "", "implicit",
              "outer (Picard) iterations per time step (FA Table 1 n_max); past it only while the residuals fall (maxOuterCorrectors)"},
             {"residualUs", "scalar", "preset: paper 1e-6, fast 1e-4", "> 0", "", "implicit",
-             "convergence: relative L1 change of Us between outer iterations (FA Table 1 r_u,max)"},
+             "convergence: L1 change of Us between outer iterations relative to the mean speed (at least residualUsScale) (FA Table 1 r_u,max)"},
             {"residualH", "scalar", "preset: paper 1e-6, fast 1e-4", "> 0", "", "implicit",
              "convergence: initial residual of the h equation (FA Table 1 r_h,max, section 3.6)"},
+            {"residualUsScale", "scalar", "1e-2", "> 0", "m/s", "implicit",
+             "the Us residual is the L1 change relative to the wet faces' mean speed, or to this"
+             " speed where they are slower (a deposit at rest has no speed to be relative to)"},
             {"maxOuterCorrectors", "label", "4 x nOuterCorrectors", ">= 1", "",
              "implicit",
              "past nOuterCorrectors the iterations go on while the residuals keep falling, up to"
