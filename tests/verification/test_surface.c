@@ -151,7 +151,8 @@ static void lake_at_rest_with_shorelines(void **state)
 /* A Coulomb pile (paraboloid cap, 0.4 m high, 2 m radius) on a 20 deg plane
  * and on the curved 40-to-10 deg transition, bed friction 45 deg: friction
  * holds every face, so the pile stays exactly at rest (|m| = 0, h unchanged
- * to 1e-12) for 400 steps at the largest stable step. */
+ * to 1e-12) for 400 steps at the largest stable step, with a kinetic energy
+ * (gf_surface_kinetic_energy) of exactly 0 before and after. */
 static void pile_at_rest_on_plane_and_curved_bed(void **state)
 {
     (void)state;
@@ -165,6 +166,7 @@ static void pile_at_rest_on_plane_and_curved_bed(void **state)
         const size_t nf = sm->m.n_faces;
         double *h = paraboloid(sm, curved ? 15.0 : 10.0, 0.4);
         assert_int_equal(gf_surface_set_state(s, h, NULL), GF_SUCCESS);
+        assert_true(gf_surface_kinetic_energy(s) == 0.0);
         double dmax = 0.0, mmax = 0.0;
         for (int n = 0; n < 400; ++n) {
             double dt;
@@ -177,10 +179,12 @@ static void pile_at_rest_on_plane_and_curved_bed(void **state)
             dmax = fmax(dmax, fabs(hn[f] - h[f]));
             mmax = fmax(mmax, fabs(m[3 * f]) + fabs(m[3 * f + 1]) + fabs(m[3 * f + 2]));
         }
-        printf("  pile on %s bed: max|dh| %.1e, max|m| %.1e after 400 steps\n", curved ? "curved" : "20 deg",
-               dmax, mmax);
+        const double e = gf_surface_kinetic_energy(s);
+        printf("  pile on %s bed: max|dh| %.1e, max|m| %.1e, kinetic energy %.1e after 400 steps\n",
+               curved ? "curved" : "20 deg", dmax, mmax, e);
         assert_true(dmax <= 1e-12);
         assert_true(mmax <= 1e-12);
+        assert_true(e == 0.0); /* the end condition's "nothing moves" */
         gf_surface_free(s);
         strip_mesh_free(sm);
         free(h);
@@ -405,6 +409,77 @@ static void peak_fields_are_the_maxima_over_all_steps(void **state)
     gf_surface_free(s);
     strip_mesh_free(sm);
     free(h), free(hp), free(up), free(hs), free(us);
+}
+
+/* The total kinetic energy (gf_surface_kinetic_energy, the end condition of
+ * a run) is sum_f 1/2 A_f h_f |u_f|^2: a uniform layer 0.3 m thick moving
+ * with one tangential velocity has exactly 1/2 h |u|^2 A_total (on the
+ * 20 deg plane along the slope and across it; on the curved bed across it,
+ * where y is tangential everywhere), before the first step and with the
+ * active set built; while a pile slides, the value after every step is the
+ * sum over all faces of h and momentum (the active set holds every wet
+ * face).  (A pile at rest has 0: pile_at_rest_on_plane_and_curved_bed.) */
+static void kinetic_energy_is_half_h_u2_area(void **state)
+{
+    (void)state;
+    for (int curved = 0; curved < 2; ++curved) {
+        double zeta = 20 * GF_DEG;
+        strip_mesh *sm = strip_mesh_new(60, 20, 0, 30, -5, 5, curved ? curved_zeta : const_zeta, &zeta, WALLS);
+        gf_surface_config c;
+        gf_surface_config_default(&c);
+        coulomb(&c, 30);
+        gf_surface *s = make_solver(sm, &c);
+        const size_t nf = sm->m.n_faces;
+        const double h0 = 0.3;
+        /* curved: across (y); plane: 2 m/s down the slope, 1.5 m/s across */
+        const double u[3] = {curved ? 0.0 : 2.0 * cos(zeta), 1.5, curved ? 0.0 : -2.0 * sin(zeta)};
+        double *h = malloc(nf * sizeof *h), *m = malloc(3 * nf * sizeof *m), area = 0.0;
+        for (size_t f = 0; f < nf; ++f) {
+            h[f] = h0, area += sm->area[f];
+            for (int k = 0; k < 3; ++k)
+                m[3 * f + k] = h0 * u[k];
+        }
+        const double exact = 0.5 * h0 * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * area;
+        assert_int_equal(gf_surface_set_state(s, h, m), GF_SUCCESS);
+        const double e0 = gf_surface_kinetic_energy(s);
+        double dt;
+        assert_int_equal(gf_surface_max_dt(s, &dt), GF_SUCCESS); /* builds the active set */
+        const double e1 = gf_surface_kinetic_energy(s);
+        printf("  uniform layer on %s bed: E %.15g, 1/2 h |u|^2 A %.15g (relative %.1e)\n",
+               curved ? "curved" : "20 deg", e1, exact, fabs(e1 / exact - 1));
+        assert_close(e0, exact, 1e-13 * exact);
+        assert_close(e1, exact, 1e-13 * exact);
+        gf_surface_free(s);
+        strip_mesh_free(sm);
+        free(h), free(m);
+    }
+    /* a sliding pile: the active set's sum is the sum over every face */
+    strip_mesh *sm;
+    gf_surface_config c;
+    double *h;
+    gf_surface *s = sliding_pile(&sm, &c, &h);
+    double worst = 0.0, peak = 0.0;
+    for (int n = 0; n < 200; ++n) {
+        double dt;
+        assert_int_equal(gf_surface_max_dt(s, &dt), GF_SUCCESS);
+        assert_int_equal(gf_surface_step(s, dt), GF_SUCCESS);
+        const double *hn = gf_surface_h(s), *m = gf_surface_momentum(s);
+        double all = 0.0;
+        for (size_t f = 0; f < sm->m.n_faces; ++f)
+            if (hn[f] > c.h_dry)
+                all += 0.5 * sm->area[f] *
+                       (m[3 * f] * m[3 * f] + m[3 * f + 1] * m[3 * f + 1] + m[3 * f + 2] * m[3 * f + 2]) / hn[f];
+        const double e = gf_surface_kinetic_energy(s);
+        worst = fmax(worst, fabs(e - all) / all);
+        peak = fmax(peak, e);
+    }
+    printf("  sliding pile, 200 steps: E against the sum over all faces to %.1e relative, peak E %.3g m5/s2\n",
+           worst, peak);
+    assert_true(peak > 0.0);
+    assert_true(worst <= 1e-13);
+    gf_surface_free(s);
+    strip_mesh_free(sm);
+    free(h);
 }
 
 /* A restart: a second solver given the first one's h, momentum and normal
@@ -652,6 +727,7 @@ int main(void)
         cmocka_unit_test(lake_at_rest_with_shorelines),
         cmocka_unit_test(mass_conserved_in_a_closed_box),
         cmocka_unit_test(peak_fields_are_the_maxima_over_all_steps),
+        cmocka_unit_test(kinetic_energy_is_half_h_u2_area),
         cmocka_unit_test(restart_continues_the_run_exactly),
         cmocka_unit_test(dry_fronts_against_exact),
         cmocka_unit_test(resolved_front_within_three_cells),

@@ -30,6 +30,10 @@ Description
     mass balance (volume + outflow - inflow = initial) is printed at every
     written time; the smallest h before the thickness safety net, the steps
     where it acted and any time step capped by maxDeltaT are reported at the end.
+    The explicit scheme can end a run before endTime once the flow has
+    stopped (controlDict stopCriterion kineticEnergy: the total kinetic
+    energy below stopFraction, 1 %, of its running peak, as AvaFrame ends its
+    runs); the log reports the stop time and which end condition applied.
 
 Usage
     faGranularFlowFoam [-parallel] [-keywords] [-version]
@@ -87,6 +91,12 @@ int main(int argc, char *argv[])
     }
     else
     {
+        // the end condition on the kinetic energy is the explicit scheme's
+        // (explicitLoop.H): controlDict stopCriterion kineticEnergy is refused here
+        granflow::keyword::read<word>
+        (
+            runTime.controlDict(), granflow::keyword::get("controlDict"), "stopCriterion", "implicit"
+        );
         #include "implicitLoop.H"
     }
     return 0;

@@ -277,6 +277,16 @@ std::vector<table> makeTables()
             {"peakFields", "switch", "no", "", "", "",
              "write hPeak and speedPeak with every time and the centre of mass"
              " (postProcessing/centreOfMass) for gfHazardMaps"},
+            {"stopCriterion", "word", "none", "none | kineticEnergy", "", "explicit",
+             "end condition besides endTime (the cap): kineticEnergy ends the run, writing that time,"
+             " once the total kinetic energy 1/2 rho sum A h |Us|^2 falls below stopFraction of its"
+             " running peak (AvaFrame's end of a run), or after the first step if nothing moves and"
+             " no inflow patch can bring material; the log reports the stop time"},
+            {"stopCriterion", "word", "none", "none", "", "implicit",
+             "the implicit scheme has no stop criterion (it runs to endTime): use scheme explicit"},
+            {"stopFraction", "scalar", "0.01", "(0, 1)", "", "explicit",
+             "stopCriterion kineticEnergy: the fraction of the peak kinetic energy below which the"
+             " run ends (AvaFrame: 1 %)"},
         }
     });
 

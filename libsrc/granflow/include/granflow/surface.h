@@ -270,6 +270,16 @@ typedef struct gf_surface_stats {
 
 void gf_surface_get_stats(const gf_surface *s, gf_surface_stats *st);
 
+/* Total kinetic energy per unit density of the owned faces [m^5/s^2]:
+ * sum_f 1/2 A_f |m_f|^2 / h_f = sum_f 1/2 A_f h_f |u_f|^2, m the momentum
+ * h u (gf_surface_momentum), over the faces with h > h_dry (thinner films
+ * have no velocity in the scheme); times rho it is in joules.  A pile at
+ * rest has 0.  Cheap: the active set after a step (every owned face of a
+ * loaded state before the first).  In parallel, sum over the ranks.  An end
+ * condition: the flow has stopped when E falls below a fraction of its
+ * running peak (AvaFrame: 1 %). */
+double gf_surface_kinetic_energy(const gf_surface *s);
+
 #ifdef __cplusplus
 }
 #endif
