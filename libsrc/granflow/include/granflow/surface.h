@@ -322,6 +322,18 @@ typedef struct gf_surface_exchange {
 } gf_surface_exchange;
 void gf_surface_get_exchange(const gf_surface *s, gf_surface_exchange *x);
 
+/* A restart of the mass exchange: after gf_surface_set_mass_exchange with
+ * the layer as it was set at the start (the intact layer ploughing fronts
+ * meet), the state of a run as these accessors gave it - the entrainable
+ * depth left [n_faces] (each <= the layer set), the cumulative entrained
+ * and detrained depths [n_faces] (or NULL: 0) and the totals x (or NULL: 0;
+ * the last step's volumes are not restored) - so that, with
+ * gf_surface_restore, the run continues bit for bit.  Errors (the detail
+ * names the face): no mass exchange set, a negative or non-finite entry, a
+ * layer left above the one set. */
+gf_status gf_surface_restore_mass_exchange(gf_surface *s, const double *h_ent_left, const double *entrained,
+                                           const double *detrained, const gf_surface_exchange *x);
+
 typedef struct gf_surface_stats {
     unsigned long steps;
     unsigned long face_updates;     /* active faces summed over steps */

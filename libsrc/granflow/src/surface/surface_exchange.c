@@ -136,3 +136,36 @@ void gf_surface_get_exchange(const gf_surface *s, gf_surface_exchange *out)
     out->entrained = s->mx->ent_total;
     out->detrained = s->mx->det_total;
 }
+
+gf_status gf_surface_restore_mass_exchange(gf_surface *s, const double *h_ent_left, const double *entrained,
+                                           const double *detrained, const gf_surface_exchange *x)
+{
+    if (!s || !s->mx)
+        return gf_fail(GF_EINVAL, "surface scheme: restoring the mass exchange: none is set "
+                                  "(gf_surface_set_mass_exchange first)");
+    struct gf_surface_mx *mx = s->mx;
+    const size_t nf = s->m.n_faces;
+    for (size_t f = 0; f < nf; ++f) {
+        const double v[3] = {h_ent_left ? h_ent_left[f] : mx->h_ent[f], entrained ? entrained[f] : 0.0,
+                             detrained ? detrained[f] : 0.0};
+        static const char *const what[3] = {"entrainable depth left", "entrained depth", "detrained depth"};
+        for (int k = 0; k < 3; ++k)
+            if (!(v[k] >= 0.0) || !isfinite(v[k]))
+                return gf_fail(isfinite(v[k]) ? GF_EDOM : GF_ENONFINITE,
+                               "surface scheme: restoring the mass exchange: %s %g m in face %zu (must be finite, "
+                               ">= 0)", what[k], v[k], f);
+        if (v[0] > mx->h_front[f])
+            return gf_fail(GF_EDOM, "surface scheme: restoring the mass exchange: entrainable depth left %g m in "
+                                    "face %zu exceeds the layer set, %g m", v[0], f, mx->h_front[f]);
+    }
+    for (size_t f = 0; f < nf; ++f) {
+        if (h_ent_left)
+            mx->h_ent[f] = h_ent_left[f];
+        mx->ent[f] = entrained ? entrained[f] : 0.0;
+        mx->det[f] = detrained ? detrained[f] : 0.0;
+    }
+    mx->ent_step = mx->det_step = 0.0;
+    mx->ent_total = x ? x->entrained : 0.0;
+    mx->det_total = x ? x->detrained : 0.0;
+    return GF_SUCCESS;
+}
