@@ -86,6 +86,9 @@ typedef struct part {
     gf_surface *s;
     gf_surface_config c;
     const double *h0;  /* serial initial thickness */
+    const gf_mass_exchange_config *mx; /* mass exchange, or NULL; its serial fields: */
+    const double *hent0, *res0;
+    gf_surface_exchange ex; /* this rank's exchanged volumes at the end */
     double t_end;
     double *h_out, *m_out; /* serial-numbered results */
     gf_surface_stats st;
@@ -276,6 +279,15 @@ static void *part_run(void *arg)
     free(h);
     if (st0)
         PART_FAIL("rank %d: set_state: %s", p->rank, gf_error_detail());
+    if (p->mx) {
+        double *he = malloc(p->nf * sizeof *he), *rs = malloc(p->nf * sizeof *rs);
+        for (size_t f = 0; f < p->nf; ++f)
+            he[f] = p->hent0[p->glob[f]], rs[f] = p->res0[p->glob[f]];
+        const gf_status st1 = gf_surface_set_mass_exchange(p->s, p->mx, he, rs);
+        free(he), free(rs);
+        if (st1)
+            PART_FAIL("rank %d: set_mass_exchange: %s", p->rank, gf_error_detail());
+    }
     double t = 0.0;
     while (t < p->t_end - 1e-14 * p->t_end) {
         double dt;
@@ -293,15 +305,17 @@ static void *part_run(void *arg)
         memcpy(p->m_out + 3 * (size_t)p->glob[f], ms + 3 * f, 3 * sizeof *ms);
     }
     gf_surface_get_stats(p->s, &p->st);
+    gf_surface_get_exchange(p->s, &p->ex);
     gf_surface_free(p->s);
     return NULL;
 }
 
 /* The decomposed run of (sm, c, h0) to t_end on R ranks (rank_of);
  * results in the serial numbering.  Returns 0 when every rank finished. */
-static int run_decomposed(const strip_mesh *sm, const gf_surface_config *c, const double *h0, double t_end,
+static int run_decomposed(const strip_mesh *sm, const gf_surface_config *c, const double *h0,
+                          const gf_mass_exchange_config *mx, const double *hent0, const double *res0, double t_end,
                           int R, const int *rank_of, double *h_out, double *m_out, unsigned long *first_order,
-                          unsigned long *halved, size_t *ghosts)
+                          unsigned long *halved, size_t *ghosts, gf_surface_exchange *ex)
 {
     world w;
     memset(&w, 0, sizeof w);
@@ -314,10 +328,12 @@ static int run_decomposed(const strip_mesh *sm, const gf_surface_config *c, cons
     pthread_t th[MAXR];
     *first_order = *halved = 0;
     *ghosts = 0;
+    memset(ex, 0, sizeof *ex);
     for (int r = 0; r < R; ++r) {
         memset(&p[r], 0, sizeof p[r]);
         p[r].w = &w, p[r].rank = r, p[r].c = *c, p[r].h0 = h0, p[r].t_end = t_end;
         p[r].h_out = h_out, p[r].m_out = m_out;
+        p[r].mx = mx, p[r].hent0 = hent0, p[r].res0 = res0;
         part_build(&p[r], sm, rank_of);
         *ghosts += p[r].ng;
     }
@@ -332,6 +348,7 @@ static int run_decomposed(const strip_mesh *sm, const gf_surface_config *c, cons
         }
         *first_order += p[r].st.first_order_edges;
         *halved += p[r].st.halved_steps;
+        ex->entrained += p[r].ex.entrained, ex->detrained += p[r].ex.detrained;
         part_free(&p[r]);
     }
     if (w.broken && !bad) {
@@ -352,14 +369,19 @@ static int run_decomposed(const strip_mesh *sm, const gf_surface_config *c, cons
  * largest thickness and momentum and conserves the volume to 1e-12.
  * *first_order: the serial run's edges recomputed at first order. */
 static int decomposed_equal_serial(const strip_mesh *sm, const gf_surface_config *c, const double *h0,
+                                   const gf_mass_exchange_config *mx, const double *hent0, const double *res0,
                                    double t_end, unsigned long *first_order)
 {
     const size_t nf = sm->m.n_faces, nx = sm->nx;
     gf_surface *s = NULL;
     assert_int_equal(gf_surface_alloc(&sm->m, c, &s), GF_SUCCESS);
     assert_int_equal(gf_surface_set_state(s, h0, NULL), GF_SUCCESS);
+    if (mx)
+        assert_int_equal(gf_surface_set_mass_exchange(s, mx, hent0, res0), GF_SUCCESS);
     double t = 0.0;
     assert_true(surface_advance(s, &t, t_end) > 0);
+    gf_surface_exchange sex;
+    gf_surface_get_exchange(s, &sex);
     gf_surface_stats sst;
     gf_surface_get_stats(s, &sst);
     *first_order = sst.first_order_edges;
@@ -387,7 +409,8 @@ static int decomposed_equal_serial(const strip_mesh *sm, const gf_surface_config
         size_t ng;
         memset(h, 0, nf * sizeof *h);
         memset(m, 0, 3 * nf * sizeof *m);
-        const int rc = run_decomposed(sm, c, h0, t_end, R, rank_of, h, m, &fo, &hv, &ng);
+        gf_surface_exchange ex;
+        const int rc = run_decomposed(sm, c, h0, mx, hent0, res0, t_end, R, rank_of, h, m, &fo, &hv, &ng, &ex);
         double dh = 0.0, dm = 0.0, vol = 0.0;
         for (size_t f = 0; f < nf; ++f) {
             dh = fmax(dh, fabs(h[f] - hs[f]));
@@ -395,43 +418,58 @@ static int decomposed_equal_serial(const strip_mesh *sm, const gf_surface_config
                 dm = fmax(dm, fabs(m[3 * f + k] - ms[3 * f + k]));
             vol += h[f] * sm->area[f];
         }
-        const double dv = fabs(vol - v0) / v0;
+        /* the volume with the exchanged volumes (closed box): vol - entrained + detrained = v0 */
+        const double dv = fabs(vol - ex.entrained + ex.detrained - v0) / v0;
+        const double dex = (fabs(ex.entrained - sex.entrained) + fabs(ex.detrained - sex.detrained)) / v0;
+        if (mx)
+            printf("  %s: entrained %.6f m^3 (serial %.6f), detrained %.6f (serial %.6f)\n", cuts[cut], ex.entrained,
+                   sex.entrained, ex.detrained, sex.detrained);
         printf("  %s (%zu ghosts): %s; max |dh| %.1e of h_max %.2f, max |dm| %.1e of %.2f, volume %.1e; %lu "
                "first-order edges, %lu halved steps (summed over ranks)\n",
                cuts[cut], ng, rc ? "FAILED" : "finished", dh, hmax, dm, mmax, dv, fo, hv);
-        gf_verify_line(c->startup_levels ? "decomposed_startup_refinement_equals_the_serial_run"
-                                         : "decomposed_runs_equal_the_serial_run",
+        gf_verify_line(mx ? "decomposed_mass_exchange_equals_the_serial_run"
+                       : c->startup_levels ? "decomposed_startup_refinement_equals_the_serial_run"
+                                           : "decomposed_runs_equal_the_serial_run",
                        "serial run", "max abs dh / h_max", dh / hmax, "<=", 1e-12, "%d ranks, %s%s, t = %g s", R,
-                       cuts[cut], c->startup_levels ? ", startup_levels 2" : "", t_end);
-        ok = ok && rc == 0 && dh <= 1e-12 * hmax && dm <= 1e-12 * mmax && dv <= 1e-12;
+                       cuts[cut], mx ? ", entrainment and resistance bands (entres)" : c->startup_levels ? ", startup_levels 2" : "", t_end);
+        ok = ok && rc == 0 && dh <= 1e-12 * hmax && dm <= 1e-12 * mmax && dv <= 1e-12 && dex <= 1e-12;
     }
     gf_surface_free(s);
     free(h), free(m), free(rank_of);
     return ok;
 }
 
-/* A paraboloid pile of radius 2 m, height 0.5 m, at s = 4 on the 35 deg
- * strip (80 x 30 faces, walls) with Coulomb friction of 20 deg slides and
- * spreads for 5 s; the order-2 scheme recomputes hundreds of edges at first
- * order for positivity (and halves steps), so the ranks must agree on them. */
+/* The sliding pile: a paraboloid of radius 2 m, height 0.5 m, at s = 4 on
+ * the 35 deg strip (80 x 30 faces, walls), Coulomb friction of 20 deg;
+ * returns the initial thickness (allocated), the mesh and configuration out */
+static double *sliding_pile(strip_mesh **sm, gf_surface_config *c)
+{
+    static double zeta = 35 * GF_DEG;
+    *sm = strip_mesh_new(80, 30, 0, 20, -3.75, 3.75, const_zeta, &zeta, WALLS);
+    gf_surface_config_default(c);
+    assert_int_equal(gf_friction_init(&c->friction, "coulomb"), GF_SUCCESS);
+    assert_int_equal(gf_friction_set(&c->friction, "mu", tan(20 * GF_DEG)), GF_SUCCESS);
+    assert_int_equal(gf_friction_set(&c->friction, "u0", 0.0), GF_SUCCESS);
+    const size_t nf = (*sm)->m.n_faces;
+    double *h0 = calloc(nf, sizeof *h0);
+    for (size_t f = 0; f < nf; ++f) {
+        const double ds = (*sm)->s_of_face[f] - 4.0, y = (*sm)->centre[3 * f + 1], r2 = ds * ds + y * y;
+        h0[f] = r2 < 4.0 ? 0.5 * (1.0 - r2 / 4.0) : 0.0;
+    }
+    return h0;
+}
+
+/* The sliding pile slides and spreads for 5 s; the order-2 scheme
+ * recomputes hundreds of edges at first order for positivity (and halves
+ * steps), so the ranks must agree on them. */
 static void decomposed_runs_equal_the_serial_run(void **state)
 {
     (void)state;
-    static double zeta = 35 * GF_DEG;
-    strip_mesh *sm = strip_mesh_new(80, 30, 0, 20, -3.75, 3.75, const_zeta, &zeta, WALLS);
-    const size_t nf = sm->m.n_faces;
+    strip_mesh *sm;
     gf_surface_config c;
-    gf_surface_config_default(&c);
-    assert_int_equal(gf_friction_init(&c.friction, "coulomb"), GF_SUCCESS);
-    assert_int_equal(gf_friction_set(&c.friction, "mu", tan(20 * GF_DEG)), GF_SUCCESS);
-    assert_int_equal(gf_friction_set(&c.friction, "u0", 0.0), GF_SUCCESS);
-    double *h0 = calloc(nf, sizeof *h0);
-    for (size_t f = 0; f < nf; ++f) {
-        const double ds = sm->s_of_face[f] - 4.0, y = sm->centre[3 * f + 1], r2 = ds * ds + y * y;
-        h0[f] = r2 < 4.0 ? 0.5 * (1.0 - r2 / 4.0) : 0.0;
-    }
+    double *h0 = sliding_pile(&sm, &c);
     unsigned long fo;
-    const int ok = decomposed_equal_serial(sm, &c, h0, 5.0, &fo);
+    const int ok = decomposed_equal_serial(sm, &c, h0, NULL, NULL, NULL, 5.0, &fo);
     assert_true(fo > 100); /* the case tests the fallback */
     assert_true(ok);
     strip_mesh_free(sm);
@@ -459,9 +497,41 @@ static void decomposed_startup_refinement_equals_the_serial_run(void **state)
         h0[f] = sm->s_of_face[f] < 6.0 ? 1.0 + (fabs(y) < 1.0 ? 0.3 : 0.0) : 0.0;
     }
     unsigned long fo;
-    assert_true(decomposed_equal_serial(sm, &c, h0, 2.0, &fo));
+    assert_true(decomposed_equal_serial(sm, &c, h0, NULL, NULL, NULL, 2.0, &fo));
     strip_mesh_free(sm);
     free(h0);
+}
+
+/* Mass exchange decomposed (simType entres): the sliding pile of the first
+ * case (35 deg, Coulomb 20 deg, closed box, rho 200) runs 4 s over an
+ * entrainment band (0.3 m of snow, e_b 200 J/kg) for 5 < s < 9 and a
+ * resistance band for 12 < s < 16; every cut goes through both (the
+ * three bands along the flow meet at s = 6.67 and 13.33).  The state
+ * equals the serial one to 1e-12, the entrained and detrained volumes
+ * summed over the ranks equal the serial ones to 1e-12 of the volume, and
+ * volume - entrained + detrained = initial. */
+static void decomposed_mass_exchange_equals_the_serial_run(void **state)
+{
+    (void)state;
+    strip_mesh *sm;
+    gf_surface_config c;
+    double *h0 = sliding_pile(&sm, &c);
+    c.rho = 200.0;
+    const size_t nf = sm->m.n_faces;
+    double *hent = calloc(nf, sizeof *hent), *res = calloc(nf, sizeof *res);
+    for (size_t f = 0; f < nf; ++f) {
+        const double sf = sm->s_of_face[f];
+        hent[f] = sf > 5.0 && sf < 9.0 ? 0.3 : 0.0;
+        res[f] = sf > 12.0 && sf < 16.0 ? 1.0 : 0.0;
+    }
+    gf_mass_exchange_config x;
+    gf_mass_exchange_config_default(&x);
+    assert_int_equal(gf_mass_exchange_simtype(&x, "entres"), GF_SUCCESS);
+    x.e_b = 200.0;
+    unsigned long fo;
+    assert_true(decomposed_equal_serial(sm, &c, h0, &x, hent, res, 4.0, &fo));
+    strip_mesh_free(sm);
+    free(h0), free(hent), free(res);
 }
 
 int main(void)
@@ -469,6 +539,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(decomposed_runs_equal_the_serial_run),
         cmocka_unit_test(decomposed_startup_refinement_equals_the_serial_run),
+        cmocka_unit_test(decomposed_mass_exchange_equals_the_serial_run),
     };
     return gf_run_tests("tests", tests, NULL, NULL);
 }

@@ -7,6 +7,7 @@
 #include "granflow/earth_pressure.h"
 #include "granflow/source.h"
 #include "granflow/friction.h"
+#include "granflow/mass_exchange.h"
 #include "granflow/topography.h"
 #include "granflow/exact.h"
 #include "granflow/kinetic1d.h"

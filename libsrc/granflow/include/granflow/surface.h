@@ -54,6 +54,9 @@
  *  4. friction: gf_friction_implicit_speed per face (exact Coulomb stopping:
  *     a face whose driving force friction can hold stops within the stage).
  *
+ * With gf_surface_set_mass_exchange, entrainment, detrainment and the
+ * increased friction of resistance areas follow each step (below).
+ *
  * Positivity: with Co <= 0.5 (Co = dt sum_e L_e s_e / (2 A), s_e the HLL
  * wave speed leaving the face through edge e, of the first-order states)
  * the first-order update keeps h >= 0; a face that the
@@ -77,6 +80,7 @@
 #include <stddef.h>
 
 #include "granflow/friction.h"
+#include "granflow/mass_exchange.h"
 #include "granflow/status.h"
 
 #ifdef __cplusplus
@@ -254,6 +258,81 @@ void gf_surface_moments(const gf_surface *s, double out[4]);
 
 /* Volume sum_f A_f h_f of the owned faces. */
 double gf_surface_volume(const gf_surface *s);
+
+/* Mass exchange with the bed and obstacles (granflow/mass_exchange.h;
+ * specification ../shared/papers/mass-exchange.md): entrainment where
+ * h_ent[f] > 0, detrainment or increased friction where resistance[f] > 0,
+ * per owned face, switched by cfg->entrainment and cfg->resistance (a NULL
+ * cfg, or both switches 0 - simType null - turns it off: the scheme is then
+ * exactly the one without it, at the cost of one test per step).
+ *   h_ent       [n_faces] entrainable depth [m] at cfg->rho_ent, >= 0 (the
+ *               polygons' thickness; 0 outside entrainment areas); needed
+ *               when cfg->entrainment;
+ *   resistance  [n_faces] 0 outside resistance areas, > 0 inside: the factor
+ *               on cfg->c_res (1: the configured coefficient); needed when
+ *               cfg->resistance.
+ * Both fields and the configuration are copied (the caller's arrays can go);
+ * a call replaces the previous exchange and zeroes the entrained and
+ * detrained fields and totals.  Errors (the detail names the parameter or
+ * face): the configuration's (gf_mass_exchange_config_check), a missing
+ * field, a negative or non-finite entry, startup_levels > 0 (the start-up's
+ * refined meshes carry no layer: refused).
+ *
+ * When: once per step, after the SSP-RK2 combination (Lie splitting), where
+ * the explicit part and the friction of both stages are done:
+ * gf_mass_exchange_face_update on each owned wet face, with |u| and h of
+ * the step's result, τ_b the friction law's at that state and the last
+ * stage's p_b.  Why not per stage like the friction: SSP-RK2's final
+ * average (U0 + U2)/2 of a per-stage exchange would halve a layer that runs
+ * out in each step instead of taking it (0.5 q_ent left, then 0.25, ...),
+ * and its detrainment would never empty a face; once per step the layer
+ * reaches 0 exactly and a face detrains to 0 exactly.  The step stays SSP
+ * (the exchange is a pointwise map that keeps h >= 0 and h_ent >= 0 for
+ * any dt) and the mass balance exact: the volume that a face gains or
+ * loses is the actual difference of its h, counted as it is applied.  Time
+ * accuracy is first order for the exchange terms, as for the scheme's
+ * implicit friction: the SSP-RK2 average of two implicit stages is first
+ * order too (for h du/dt = -c u^2 its per-step error is 1.5 (c u dt/h)^2 u
+ * against 0.5 for one backward-Euler step).
+ *
+ * Mass balance, in volumes at the flow density (mass = rho volume; summed
+ * over the ranks in parallel, each rank counting its owned faces):
+ *   gf_surface_volume + outflow - inflow - entrained + detrained = initial
+ * to round-off, outflow and inflow from gf_surface_edge_volume. */
+gf_status gf_surface_set_mass_exchange(gf_surface *s, const gf_mass_exchange_config *cfg, const double *h_ent,
+                                       const double *resistance);
+
+/* The entrainable depth left on each owned face [n_faces] [m] (at rho_ent;
+ * never negative), or NULL without mass exchange. */
+const double *gf_surface_entrainable_depth(const gf_surface *s);
+/* Cumulative flow thickness [m] (at the flow density rho) that each owned
+ * face gained by entrainment / lost by detrainment [n_faces]: the
+ * entrained-depth and detrained-depth rasters of spec section 4 (mass per
+ * area: rho times it); NULL without mass exchange. */
+const double *gf_surface_entrained_depth(const gf_surface *s);
+const double *gf_surface_detrained_depth(const gf_surface *s);
+
+/* Exchanged volumes [m^3] of this rank's owned faces at the flow density
+ * (mass: rho times them): of the last gf_surface_step and since
+ * gf_surface_set_mass_exchange (spec section 4's mass time series); all 0
+ * without mass exchange. */
+typedef struct gf_surface_exchange {
+    double entrained_step, detrained_step;
+    double entrained, detrained;
+} gf_surface_exchange;
+void gf_surface_get_exchange(const gf_surface *s, gf_surface_exchange *x);
+
+/* A restart of the mass exchange: after gf_surface_set_mass_exchange with
+ * the layer as it was set at the start (the intact layer ploughing fronts
+ * meet), the state of a run as these accessors gave it - the entrainable
+ * depth left [n_faces] (each <= the layer set), the cumulative entrained
+ * and detrained depths [n_faces] (or NULL: 0) and the totals x (or NULL: 0;
+ * the last step's volumes are not restored) - so that, with
+ * gf_surface_restore, the run continues bit for bit.  Errors (the detail
+ * names the face): no mass exchange set, a negative or non-finite entry, a
+ * layer left above the one set. */
+gf_status gf_surface_restore_mass_exchange(gf_surface *s, const double *h_ent_left, const double *entrained,
+                                           const double *detrained, const gf_surface_exchange *x);
 
 typedef struct gf_surface_stats {
     unsigned long steps;

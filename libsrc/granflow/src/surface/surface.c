@@ -4,6 +4,7 @@
  * surface_internal.h. */
 #include "surface_internal.h"
 #include "surface_active.h"
+#include "surface_exchange.h"
 #include "surface_flux.h"
 #include "surface_halo.h"
 #include "surface_recon.h"
@@ -31,6 +32,7 @@ void gf_surface_free(gf_surface *s)
     if (!s)
         return;
     gf_surface_startup_free(s);
+    gf_surface_exchange_free(s);
     void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->geo,      s->h,    s->mom,    s->h1,     s->m1,
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->es, s->acc_h,  s->acc_m,
                     s->acc_pn,   s->fh,     s->eacc, s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
@@ -452,6 +454,11 @@ static gf_status step_once(gf_surface *s, double dt)
         const int e = s->act_b[i];
         s->edge_vol[e] += s->edge_vol_step[e];
     }
+    /* mass exchange (granflow/mass_exchange.h) once per step, on the step's
+     * result: Lie splitting of the pointwise exchange from the SSP-RK2
+     * step (gf_surface_set_mass_exchange) */
+    if (s->mx && (st = gf_surface_exchange_step(s, dt, &wet_changed)))
+        return st;
     /* The active set is a function of which faces are wet (h > 0): while
      * that set stays the same (on every rank), so does the active set, and
      * it is kept (gf_surface_build_active would rebuild it in the same order). */
@@ -488,6 +495,8 @@ gf_status gf_surface_step(gf_surface *s, double dt)
         return gf_fail(GF_EDOM, "surface scheme: time step %g (must be finite, >= 0)", dt);
     if (dt == 0.0)
         return GF_SUCCESS;
+    if (s->mx)
+        s->mx->ent_step = s->mx->det_step = 0.0;
     if (s->startup_pending || s->su)
         return gf_surface_startup_step(s, dt);
     return gf_surface_step_split(s, dt, 0);

@@ -16,17 +16,32 @@
  *   surface_cfl.c      the step bound, gf_surface_max_dt;
  *   surface_source.c   sources and friction: the face update (surface_source.h);
  *   surface_startup.c  the start-up on refined meshes (surface_startup.h);
+ *   surface_exchange.c mass exchange (granflow/mass_exchange.h) once per
+ *                      step: entrainment, detrainment, increased friction,
+ *                      their per-face and total volumes (surface_exchange.h);
  *   refine.c           the refined meshes (gf_surface_mesh_refine).
  * The lane helpers of the four-lane kernels are in surface_simd.h. */
 #ifndef GRANFLOW_SURFACE_INTERNAL_H
 #define GRANFLOW_SURFACE_INTERNAL_H
 
+#include "granflow/mass_exchange.h"
 #include "granflow/surface.h"
 #include "internal.h"
 
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
+
+/* The mass exchange's per-face fields and totals (surface_exchange.c) */
+struct gf_surface_mx {
+    gf_mass_exchange_config c;
+    double *h_ent;   /* entrainable depth left [n_faces] (at rho_ent) */
+    double *h_front; /* the layer as set: intact ahead of a ploughing front [n_faces] */
+    double *res;     /* resistance factor [n_faces], or NULL (no resistance area) */
+    double *ent;     /* flow thickness entrained, cumulative [n_faces] */
+    double *det;     /* flow thickness detrained, cumulative [n_faces] */
+    double ent_step, det_step, ent_total, det_total; /* volumes [m^3] */
+};
 
 #define NV 4 /* reconstructed variables: h, u_x, u_y, u_z */
 /* Per-edge geometry, built once by build_frames, in two blocks so that each
@@ -156,6 +171,7 @@ struct gf_surface {
     double u_slow; /* speed below which a face next to one at rest is slow: dt |g| */
     int startup_pending; /* the next step begins the start-up on refined meshes (startup_levels) */
     struct gf_startup *su; /* the running start-up, or NULL */
+    struct gf_surface_mx *mx; /* mass exchange, or NULL (off: costs one test per step) */
     gf_surface_stats st;
 };
 
