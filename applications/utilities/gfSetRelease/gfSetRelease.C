@@ -310,10 +310,18 @@ int main(int argc, char *argv[])
             Pstream::listCombineGather(nIn, plusEqOp<label>());
             for (size_t k = 0; k < P.n; ++k)
             {
+                if (fieldName == "resistance")
+                {
+                    Info<< "    polygon " << label(k) << " of " << file << ": resistance factor "
+                        << P.value[k] << ", plan area " << gf_polygons_area(&P, k) << " m2; " << nIn[k]
+                        << " faces, terrain area " << area[k] << " m2" << endl;
+                    continue;
+                }
                 Info<< "    polygon " << label(k) << " of " << file << ": thickness " << P.value[k]
                     << " m (" << measured << "), plan area " << gf_polygons_area(&P, k)
                     << " m2; " << nIn[k] << " faces, terrain area " << area[k]
-                    << " m2, released volume " << vol[k] << " m3" << endl;
+                    << (fieldName == "h" ? " m2, released volume " : " m2, layer volume ") << vol[k]
+                    << " m3" << endl;
             }
             // a polygon that releases nothing is a mistake (another CRS without
             // a .prj, outside the cropped mesh, smaller than a face)
