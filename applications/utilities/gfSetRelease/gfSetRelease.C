@@ -121,6 +121,12 @@ int main(int argc, char *argv[])
         }
         fieldPtr->dimensions().reset(fieldName == "resistance" ? dimless : dimLength);
     }
+    if (fieldName != "h" && kw::found(dict, rt, "Us"))
+    {
+        FatalIOErrorInFunction(dict)
+            << dictFile << ": Us (the initial velocity) belongs to the release, field h; this"
+            << " dictionary sets field " << fieldName << exit(FatalIOError);
+    }
     areaScalarField& field = fieldPtr.valid() ? fieldPtr.ref() : h;
     const vectorField& C = aMesh.areaCentres().primitiveField();
     const vectorField& N = aMesh.faceAreaNormals().primitiveField();
