@@ -414,10 +414,12 @@ static void outline_and_map_are_written(void **state)
     gf_raster_free(&dem);
 }
 
-/* a DEM of 41 x 41 pixels of 1 m, lower-left corner (0, 0), pixel centres
- * at (c + 0.5, 40.5 - r), elevation ground(x) */
-static void write_plane_dem(const char *path, double z0, double gx)
+/* dem: a DEM of 41 x 41 pixels of 1 m, lower-left corner (0, 0), pixel
+ * centres at (c + 0.5, 40.5 - r), elevation z0 + gx x, written to the ESRI
+ * grid name in the test folder and read back */
+static void plane_dem(const char *name, double z0, double gx, gf_raster *dem)
 {
+    const char *path = tmp(name);
     FILE *f = fopen(path, "w");
     assert_non_null(f);
     fprintf(f, "ncols 41\nnrows 41\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n");
@@ -427,6 +429,7 @@ static void write_plane_dem(const char *path, double z0, double gx)
         fputc('\n', f);
     }
     fclose(f);
+    assert_int_equal(gf_raster_read(path, dem), GF_SUCCESS);
 }
 
 #define TAN60 1.7320508075688772
@@ -438,10 +441,8 @@ static void write_plane_dem(const char *path, double z0, double gx)
 static void dam_on_flat_ground_has_the_crown_height_and_the_wall_slope(void **state)
 {
     (void)state;
-    const char *asc = tmp("flat.asc");
-    write_plane_dem(asc, 100.0, 0.0);
     gf_raster dem;
-    assert_int_equal(gf_raster_read(asc, &dem), GF_SUCCESS);
+    plane_dem("flat.asc", 100.0, 0.0, &dem);
     const double line[6] = {20.5, -5.0, 105.0, 20.5, 46.0, 105.0};
     size_t raised = 0;
     double rise = 0;
@@ -457,7 +458,7 @@ static void dam_on_flat_ground_has_the_crown_height_and_the_wall_slope(void **st
     gf_raster_free(&dem);
     /* a short line (20.5, 10.5) - (20.5, 30.5): beyond its north end the
      * nearest point is the end; pixel (21.5, 32.5) is sqrt(5) from it */
-    assert_int_equal(gf_raster_read(asc, &dem), GF_SUCCESS);
+    plane_dem("flat.asc", 100.0, 0.0, &dem);
     const double shrt[6] = {20.5, 10.5, 105.0, 20.5, 30.5, 105.0};
     assert_int_equal(gf_dam_burn(&dem, 2, shrt, 60.0, NULL, NULL), GF_SUCCESS);
     assert_close(dem.z[(40 - 32) * 41 + 21], 105.0 - TAN60 * sqrt(5.0), 1e-12);
@@ -473,10 +474,8 @@ static void dam_on_flat_ground_has_the_crown_height_and_the_wall_slope(void **st
 static void dam_on_sloping_ground_follows_the_crown_elevation(void **state)
 {
     (void)state;
-    const char *asc = tmp("plane.asc");
-    write_plane_dem(asc, 100.0, 0.25);
     gf_raster dem;
-    assert_int_equal(gf_raster_read(asc, &dem), GF_SUCCESS);
+    plane_dem("plane.asc", 100.0, 0.25, &dem);
     const double line[9] = {20.5, -5.0, 110.0, 20.5, 20.0, 112.5, 20.5, 46.0, 115.1};
     size_t raised = 0;
     double rise = 0;
@@ -519,10 +518,8 @@ static void expect_detail(const char *a, const char *b)
 static void bad_dams_are_refused_with_the_reason(void **state)
 {
     (void)state;
-    const char *asc = tmp("flat.asc");
-    write_plane_dem(asc, 100.0, 0.0);
     gf_raster dem;
-    assert_int_equal(gf_raster_read(asc, &dem), GF_SUCCESS);
+    plane_dem("flat.asc", 100.0, 0.0, &dem);
     const double ok[6] = {20.5, -5.0, 105.0, 20.5, 46.0, 105.0};
     assert_int_equal(gf_dam_burn(&dem, 1, ok, 60.0, NULL, NULL), GF_EDOM);
     expect_detail("at least 2", NULL);

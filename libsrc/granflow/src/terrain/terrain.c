@@ -243,6 +243,24 @@ static int zvec_push(zvec *v, size_t x)
     return 0;
 }
 
+/* Open a vector file (OGR) for reading; NULL with the failure in *st
+ * (GF_EIO naming what and the file) */
+static GDALDatasetH open_vector(const char *what, const char *path, gf_status *st)
+{
+    *st = GF_SUCCESS;
+    if (access(path, R_OK) != 0) {
+        *st = gf_fail(GF_EIO, "%s %s: no such file or not readable", what, path);
+        return NULL;
+    }
+    CPLErrorReset();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
+    CPLPopErrorHandler();
+    if (!ds)
+        *st = gf_fail(GF_EIO, "%s %s: not a vector file OGR can read (%s)", what, path, gdal_msg());
+    return ds;
+}
+
 /* Append polygon g (wkbPolygon) with value v */
 static int add_polygon(OGRGeometryH g, double v, zvec *ring0, zvec *pt0, dvec *xy, dvec *val, dvec *box)
 {
@@ -281,14 +299,10 @@ gf_status gf_polygons_read(const char *path, const char *attribute, double value
     gdal_init();
     if (!attribute && !(isfinite(value) && value >= 0.0))
         return gf_fail(GF_EDOM, "polygons %s: value %g must be finite and >= 0", path, value);
-    if (access(path, R_OK) != 0)
-        return gf_fail(GF_EIO, "polygons %s: no such file or not readable", path);
-    CPLErrorReset();
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
-    CPLPopErrorHandler();
+    gf_status opened;
+    GDALDatasetH ds = open_vector("polygons", path, &opened);
     if (!ds)
-        return gf_fail(GF_EIO, "polygons %s: not a vector file OGR can read (%s)", path, gdal_msg());
+        return opened;
     gf_status st = GF_SUCCESS;
     zvec ring0 = {0}, pt0 = {0};
     dvec xy = {0}, val = {0}, box = {0};
@@ -801,14 +815,10 @@ gf_status gf_dam_read(const char *path, const char *slope_attribute, double slop
         return gf_fail(GF_EINVAL, "gf_dam_read: null argument");
     memset(d, 0, sizeof *d);
     gdal_init();
-    if (access(path, R_OK) != 0)
-        return gf_fail(GF_EIO, "dam %s: no such file or not readable", path);
-    CPLErrorReset();
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
-    CPLPopErrorHandler();
+    gf_status opened;
+    GDALDatasetH ds = open_vector("dam", path, &opened);
     if (!ds)
-        return gf_fail(GF_EIO, "dam %s: not a vector file OGR can read (%s)", path, gdal_msg());
+        return opened;
     gf_status st = GF_SUCCESS;
     OGRFeatureH f = NULL;
     OGRLayerH L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
