@@ -52,6 +52,7 @@ Usage
 #include "fixFacesAtRest.H"
 #include "granularBoundaries.H"
 #include "explicitSurfaceScheme.H"
+#include "massExchange.H"
 #include "peakFields.H"
 #include "cpuSections.H"
 
@@ -97,6 +98,9 @@ int main(int argc, char *argv[])
         (
             runTime.controlDict(), granflow::keyword::get("controlDict"), "stopCriterion", "implicit"
         );
+        // the mass exchange is the explicit scheme's (a per-step update of
+        // its kernel): massExchange simType other than null is refused here
+        granflow::readMassExchange(granularProperties, "implicit");
         #include "implicitLoop.H"
     }
     return 0;

@@ -9,13 +9,18 @@ Description
         hPeak.asc/.tif         peak flow thickness [m]
         speedPeak.asc/.tif     peak speed [m/s]
         pressurePeak.asc/.tif  peak dynamic pressure rho speedPeak^2 [kPa]
+        entrainedDepth.asc/.tif, detrainedDepth.asc/.tif
+                               cumulative entrained / detrained flow thickness
+                               [m] (when the time has hEntrained, hDetrained:
+                               granularProperties massExchange)
         affectedArea.geojson   outline of hPeak >= threshold (area per polygon)
         comPath.geojson        the path of the centre of mass (3D line) over
                                every time step (the solver's centreOfMass.dat)
                                or else the written times, its horizontal
                                travel, drop and travel angle atan(drop/travel)
         hPeak.png, pressurePeak.png   hillshade of the DEM tinted by the peak field
-        mass.csv               volume, net outflow and balance at every written time
+        mass.csv               volume, net outflow, balance, entrained and
+                               detrained volume at every written time
         summary.dat            the numbers printed at the end
     A DEM pixel that is a mesh node takes the area-weighted mean of its
     faces, pixels between nodes (coarsened meshes) the bilinear value, pixels
@@ -148,6 +153,24 @@ int main(int argc, char *argv[])
     write("speedPeak", ru);
     write("pressurePeak", rp);
 
+    // the mass exchange's depths (massExchange in granularProperties: the
+    // solver writes hEntrained and hDetrained, cumulative flow thickness at
+    // the flow density), when the time has them
+    word exchangeRasters;
+    scalar entrainedMax = -1, detrainedMax = -1;
+    for (const word name : {"hEntrained", "hDetrained"})
+    {
+        IOobject io(name, runTime.timeName(), mesh, IOobject::MUST_READ);
+        if (!io.typeHeaderOk<areaScalarField>(true)) continue;
+        const scalarField v(areaScalarField(io, aMesh).primitiveField());
+        std::vector<double> r;
+        toRaster(v, r);
+        const word rn(name == "hEntrained" ? "entrainedDepth" : "detrainedDepth");
+        write(rn, r);
+        (name == "hEntrained" ? entrainedMax : detrainedMax) = gMax(v);
+        exchangeRasters += (exchangeRasters.empty() ? "" : ",") + rn;
+    }
+
     double affected = 0;
     granflow::terrainCase::check
     (
@@ -183,7 +206,8 @@ int main(int argc, char *argv[])
     OFstream massCsv(outDir/"mass.csv");
     const granflow::keyword::table& mt = granflow::keyword::get("granflowMassBalance");
     massCsv.precision(15);
-    massCsv << "time,volume,netOutflow,imbalance" << nl;
+    massCsv << "time,volume,netOutflow,imbalance,entrained,detrained" << nl;
+    scalar initialVolume = -1, lastEntrained = 0, lastDetrained = 0, lastVolume = 0;
     bool first = true;
     for (const instant& t : times)
     {
@@ -193,12 +217,17 @@ int main(int argc, char *argv[])
         if (first && t.value() > times.first().value())
         {
             // the start: the initial volume of the run
-            massCsv << times.first().value() << ',' << granflow::keyword::read<scalar>(mb, mt, "initialVolume") << ",0,0" << nl;
+            massCsv << times.first().value() << ',' << granflow::keyword::read<scalar>(mb, mt, "initialVolume") << ",0,0,0,0" << nl;
         }
         first = false;
-        massCsv << t.value() << ',' << granflow::keyword::read<scalar>(mb, mt, "volume") << ','
+        initialVolume = granflow::keyword::read<scalar>(mb, mt, "initialVolume");
+        lastVolume = granflow::keyword::read<scalar>(mb, mt, "volume");
+        lastEntrained = granflow::keyword::read<scalar>(mb, mt, "entrained");
+        lastDetrained = granflow::keyword::read<scalar>(mb, mt, "detrained");
+        massCsv << t.value() << ',' << lastVolume << ','
                 << granflow::keyword::read<scalar>(mb, mt, "netOutflow")
-                << ',' << granflow::keyword::read<scalar>(mb, mt, "imbalance") << nl;
+                << ',' << granflow::keyword::read<scalar>(mb, mt, "imbalance")
+                << ',' << lastEntrained << ',' << lastDetrained << nl;
     }
 
     // the centre of mass at every time step (the solver's
@@ -299,8 +328,17 @@ int main(int argc, char *argv[])
             + " " + comSource + "), " + name(drop) + " m drop, travel angle "
             + name(radToDeg(Foam::atan2(drop, travel))) + " deg");
     }
-    say("wrote postProcessing/hazardMaps/{hPeak,speedPeak,pressurePeak}.{asc,tif}, affectedArea.geojson,"
-        " comPath.geojson, hPeak.png, pressurePeak.png, mass.csv");
+    if (!exchangeRasters.empty() && initialVolume > 0)
+    {
+        say("mass exchange: released " + name(rho*initialVolume) + " kg, entrained " + name(rho*lastEntrained)
+            + " kg, detrained " + name(rho*lastDetrained) + " kg, flowing at the end " + name(rho*lastVolume) + " kg, growth index m_end/m_release "
+            + name(lastVolume/initialVolume)
+            + "; max entrained depth " + name(max(entrainedMax, scalar(0))) + " m, max detrained depth "
+            + name(max(detrainedMax, scalar(0))) + " m");
+    }
+    say("wrote postProcessing/hazardMaps/{hPeak,speedPeak,pressurePeak"
+        + (exchangeRasters.empty() ? string() : string("," + exchangeRasters))
+        + "}.{asc,tif}, affectedArea.geojson, comPath.geojson, hPeak.png, pressurePeak.png, mass.csv");
     Info<< "End" << endl;
     return 0;
 }

@@ -33,6 +33,21 @@ Description
             polygons { file "Inputs/REL/release.geojson"; value 1.5; measured vertical; }
         );
 
+    The mass exchange's input fields (constant/granularProperties
+    massExchange) are set the same way from another dictionary,
+    gfSetRelease -dict <name> with 'field hEnt' (the entrainable layer depth
+    [m], 0 outside the entrainment areas; AvaFrame's Inputs/ENT polygons with
+    their thickness attribute) or 'field resistance' (the factor on cRes, 0
+    outside; Inputs/RES polygons with value 1):
+
+        // system/entrainmentDict
+        field    hEnt;
+        default  0;
+        regions  ( polygons { file "Inputs/ENT/entrainment.shp"; attribute thickness; } );
+
+    A missing or negative thickness attribute and a polygon that covers no
+    face centre are errors naming the dictionary, the file and the entry.
+
     Later regions override earlier ones where they give a value; a
     sphericalCap sets h only where the sphere lies above the surface.  Writes
     h (and Us) into the start time folder.  Every entry is read through its
@@ -52,7 +67,16 @@ Description
 
 int main(int argc, char *argv[])
 {
-    argList::addNote("Set the initial flow thickness h (and Us) from system/releaseDict");
+    argList::addNote
+    (
+        "Set the initial flow thickness h (and Us) from system/releaseDict, or with -dict the"
+        " field it names (field hEnt: the entrainable layer, resistance: the resistance areas)"
+    );
+    argList::addOption
+    (
+        "dict", "name",
+        "read system/<name> instead of system/releaseDict (e.g. entrainmentDict, resistanceDict)"
+    );
     granflow::keyword::addOptions();   // -keywords, -version
     if (granflow::keyword::earlyOptions(argc, argv))
     {
@@ -64,22 +88,48 @@ int main(int argc, char *argv[])
     #include "createMesh.H"
     #include "createFaMesh.H"
 
+    const word dictName(args.getOrDefault<word>("dict", "releaseDict"));
+    const fileName dictFile("system"/dictName);
     IOdictionary dict
     (
-        IOobject("releaseDict", runTime.system(), mesh, IOobject::MUST_READ, IOobject::NO_WRITE)
+        IOobject(dictName, runTime.system(), mesh, IOobject::MUST_READ, IOobject::NO_WRITE)
     );
 
+    namespace kw = granflow::keyword;
+    const kw::table& rt = kw::get("releaseDict");
+    kw::checkKeys(dict, rt);
+    // the field set: h, or the mass exchange's inputs hEnt [m] and
+    // resistance [-] (a new file with h's patch types when there is none)
+    const word fieldName = kw::read<word>(dict, rt, "field");
     areaScalarField h
     (
         IOobject("h", runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE),
         aMesh
     );
+    autoPtr<areaScalarField> fieldPtr;
+    if (fieldName != "h")
+    {
+        IOobject io(fieldName, runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE);
+        if (io.typeHeaderOk<areaScalarField>(true))
+        {
+            fieldPtr.reset(new areaScalarField(io, aMesh));
+        }
+        else
+        {
+            io.readOpt() = IOobject::NO_READ;
+            fieldPtr.reset(new areaScalarField(io, h));
+        }
+        fieldPtr->dimensions().reset(fieldName == "resistance" ? dimless : dimLength);
+    }
+    if (fieldName != "h" && kw::found(dict, rt, "Us"))
+    {
+        FatalIOErrorInFunction(dict)
+            << dictFile << ": Us (the initial velocity) belongs to the release, field h; this"
+            << " dictionary sets field " << fieldName << exit(FatalIOError);
+    }
+    areaScalarField& field = fieldPtr.valid() ? fieldPtr.ref() : h;
     const vectorField& C = aMesh.areaCentres().primitiveField();
     const vectorField& N = aMesh.faceAreaNormals().primitiveField();
-
-    namespace kw = granflow::keyword;
-    const kw::table& rt = kw::get("releaseDict");
-    kw::checkKeys(dict, rt);
     scalarField hNew(h.size(), kw::read<scalar>(dict, rt, "default"));
 
     const PtrList<entry> regions(kw::read<PtrList<entry>>(dict, rt, "regions"));
@@ -97,7 +147,7 @@ int main(int argc, char *argv[])
             == std::end(types))
         {
             FatalIOErrorInFunction(dict)
-                << "Unknown region type " << type << " in system/releaseDict"
+                << "Unknown region type " << type << " in " << dictFile
                 << "; valid types: sphericalCap, cylindricalCap, box, cylinder, function, polygons"
                 << exit(FatalIOError);
         }
@@ -230,7 +280,7 @@ int main(int argc, char *argv[])
                 FatalIOErrorInFunction(dict)
                     << "regions/polygons (file " << file
                     << (attr.empty() ? word::null : word(", attribute " + attr))
-                    << ") of system/releaseDict: " << gf_error_detail() << exit(FatalIOError);
+                    << ") of " << dictFile << ": " << gf_error_detail() << exit(FatalIOError);
             }
             const string demCrs = kw::read<string>(terrain, tp, "crs");
             if (demCrs.size() && !*P.wkt)
@@ -266,10 +316,18 @@ int main(int argc, char *argv[])
             Pstream::listCombineGather(nIn, plusEqOp<label>());
             for (size_t k = 0; k < P.n; ++k)
             {
+                if (fieldName == "resistance")
+                {
+                    Info<< "    polygon " << label(k) << " of " << file << ": resistance factor "
+                        << P.value[k] << ", plan area " << gf_polygons_area(&P, k) << " m2; " << nIn[k]
+                        << " faces, terrain area " << area[k] << " m2" << endl;
+                    continue;
+                }
                 Info<< "    polygon " << label(k) << " of " << file << ": thickness " << P.value[k]
                     << " m (" << measured << "), plan area " << gf_polygons_area(&P, k)
                     << " m2; " << nIn[k] << " faces, terrain area " << area[k]
-                    << " m2, released volume " << vol[k] << " m3" << endl;
+                    << (fieldName == "h" ? " m2, released volume " : " m2, layer volume ") << vol[k]
+                    << " m3" << endl;
             }
             // a polygon that releases nothing is a mistake (another CRS without
             // a .prj, outside the cropped mesh, smaller than a face)
@@ -281,7 +339,7 @@ int main(int argc, char *argv[])
                     const boundBox mb(aMesh.mesh().bounds());
                     gf_polygons_free(&P);
                     FatalIOErrorInFunction(r)
-                        << "polygon " << label(k) << " of " << file << " (extent x " << b[0] << " .. "
+                        << dictFile << " regions/polygons: polygon " << label(k) << " of " << file << " (extent x " << b[0] << " .. "
                         << b[2] << ", y " << b[1] << " .. " << b[3] << ") contains no face centre of"
                         << " the area mesh (x " << mb.min().x() + offset.x() << " .. "
                         << mb.max().x() + offset.x() << ", y " << mb.min().y() + offset.y() << " .. "
@@ -298,15 +356,23 @@ int main(int argc, char *argv[])
         if (!(hNew[i] >= 0) || !std::isfinite(hNew[i]))
         {
             FatalIOErrorInFunction(dict)
-                << "flow thickness " << hNew[i] << " at face " << i << " (centre " << C[i]
+                << dictFile << ": " << fieldName << " = " << hNew[i] << " at face " << i << " (centre " << C[i]
                 << ") is negative or not finite" << exit(FatalIOError);
         }
     }
-    h.primitiveFieldRef() = hNew;
-    h.correctBoundaryConditions();
-    h.write();
-    Info<< "Wrote h: volume " << gSum(hNew*aMesh.S().field()) << " m3, max " << gMax(hNew)
-        << " m" << endl;
+    field.primitiveFieldRef() = hNew;
+    field.correctBoundaryConditions();
+    field.write();
+    if (fieldName == "resistance")
+    {
+        Info<< "Wrote resistance: area " << gSum(pos(hNew)*aMesh.S().field()) << " m2, max factor "
+            << gMax(hNew) << endl;
+    }
+    else
+    {
+        Info<< "Wrote " << fieldName << ": volume " << gSum(hNew*aMesh.S().field()) << " m3, max "
+            << gMax(hNew) << " m" << endl;
+    }
 
     vector u0 = Zero;
     if (kw::readIfPresent<vector>(dict, rt, "Us", u0))

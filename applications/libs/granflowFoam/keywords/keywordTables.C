@@ -13,6 +13,7 @@
 #include "keyword.H"
 
 #include "granflow/friction.h"
+#include "granflow/mass_exchange.h"
 
 #include <cmath>
 #include <sstream>
@@ -117,6 +118,61 @@ table damTable(const std::string& parent, const std::string& file, const std::st
     };
 }
 
+// The mass exchange (granflow/mass_exchange.h, spec mass-exchange.md):
+// the defaults are libgranflow's gf_mass_exchange_config_default, the
+// single source of them; the ranges are those gf_mass_exchange_config_check
+// applies
+table massExchangeTable()
+{
+    gf_mass_exchange_config d;
+    gf_mass_exchange_config_default(&d);
+    const std::string onoff = d.detrainment ? "on" : "off";
+    return
+    {
+        "granularProperties/massExchange", "constant/granularProperties", "massExchange/",
+        "faGranularFlowFoam",
+        "Mass exchange with the bed and obstacles (../shared/papers/mass-exchange.md, after AvaFrame"
+        " com1DFA): entrainment where the layer 0/hEnt > 0, detrainment or increased friction where"
+        " 0/resistance > 0 (both set from polygons by gfSetRelease -dict). Defaults: libgranflow's"
+        " (granflow/mass_exchange.h). The explicit scheme only.",
+        true, "scheme",
+        {
+            {"simType", "word", "null", "null | ent | res | entres", "", "explicit",
+             "AvaFrame's switch: null (no exchange, costs nothing), ent (entrainment, needs 0/hEnt),"
+             " res (resistance areas, needs 0/resistance), entres (both)"},
+            {"simType", "word", "null", "null", "", "implicit",
+             "the implicit scheme has no mass exchange (it is a pointwise per-step update of the"
+             " explicit scheme's kernel): use scheme explicit"},
+            {"rhoEnt", "scalar", num(d.rho_ent), "> 0", "kg/m3", "",
+             "density of the entrainable snow (spec 1: q_ent = rhoEnt hEnt)"},
+            {"entTh", "scalar", num(d.h_ent), ">= 0", "m", "",
+             "entrainable thickness the set-up uses where an area gives none (gfSetRelease polygons"
+             " value); the solver takes the field 0/hEnt"},
+            {"entEroEnergy", "scalar", num(d.e_b), ">= 0", "J/kg", "",
+             "specific erosion energy e_b: erosion rate tau_b |u|/e_b (spec 1); 0 selects ploughing"},
+            {"entShearResistance", "scalar", num(d.e_s), ">= 0", "J/m2", "",
+             "breaking energy per fracture area e_s (spec 1)"},
+            {"entDefResistance", "scalar", num(d.e_d), ">= 0", "J/kg", "",
+             "deformation energy per entrained mass e_d (spec 1)"},
+            {"detrainment", "switch", onoff, "", "", "",
+             "detrainment below the speed/thickness windows (spec 2); off: the increased friction"
+             " acts everywhere in a resistance area"},
+            {"detK", "scalar", num(d.K), ">= 0", "Pa", "",
+             "detrainment coefficient K: rate K/|u| per area (spec 2; Feistl et al. 2014)"},
+            {"cRes", "scalar", num(d.c_res), ">= 0", "", "",
+             "increased-friction coefficient c_res, times the face's 0/resistance factor (spec 2)"},
+            {"forestVMin", "scalar", num(d.v_min), ">= 0", "m/s", "",
+             "below this speed: detrainment (spec 2 v_min; <= forestVMax)"},
+            {"forestVMax", "scalar", num(d.v_max), ">= 0", "m/s", "",
+             "above this speed: nothing, the obstacles are overrun (spec 2 v_max)"},
+            {"forestThMin", "scalar", num(d.h_min), ">= 0", "m", "",
+             "below this thickness: detrainment (spec 2 h_min; <= forestThMax)"},
+            {"forestThMax", "scalar", num(d.h_max), ">= 0", "m", "",
+             "above this thickness: nothing (spec 2 h_max)"},
+        }
+    };
+}
+
 std::vector<table> makeTables()
 {
     std::vector<table> T;
@@ -169,6 +225,9 @@ std::vector<table> makeTables()
              " (off: FA eq. 51, a deposit creeps at about u0); the explicit scheme needs off"},
             {"boundaries", "dictionary", "required", "", "", "",
              "one sub-dictionary per area-mesh patch, boundaries/<patch> (table below)"},
+            {"massExchange", "dictionary", "-", "", "", "",
+             "entrainment, detrainment and resistance areas (AvaFrame's simType; table below);"
+             " absent: simType null"},
         };
         t.rows.insert(t.rows.end(), more.begin(), more.end());
         T.push_back(t);
@@ -189,6 +248,7 @@ std::vector<table> makeTables()
     {
         T.push_back(f);
     }
+    T.push_back(massExchangeTable());
     T.push_back
     ({
         "granularProperties/boundaries/<patch>", "constant/granularProperties", "boundaries/<patch>/",
@@ -319,16 +379,21 @@ std::vector<table> makeTables()
         "granflowMassBalance", "<time>/uniform/granflowMassBalance", "",
         "faGranularFlowFoam (restart), gfFlowSummary, gfHazardMaps",
         "Written by faGranularFlowFoam with every time: the totals of the mass balance"
-        " volume + outflow - inflow = initial, continued by a restart.",
+        " volume + outflow - inflow - entrained + detrained = initial, continued by a restart.",
         true, "",
         {
             {"initialVolume", "scalar", "required", ">= 0", "m3", "", "volume at the start of the run"},
             {"volume", "scalar", "required", ">= 0", "m3", "", "volume in the domain at this time"},
             {"netOutflow", "scalar", "required", "", "m3", "", "net volume out of the domain so far"},
-            {"imbalance", "scalar", "required", "", "m3", "", "volume + netOutflow - initialVolume"},
+            {"imbalance", "scalar", "required", "", "m3", "",
+             "volume + netOutflow - entrained + detrained - initialVolume"},
             {"carried", "scalar", "0", "", "m3", "",
              "BDF2 share of the step before a restart (not attributed to a patch)"},
             {"carriedLastStep", "scalar", "0", "", "m3", "", "its last step"},
+            {"entrained", "scalar", "0", ">= 0", "m3", "",
+             "volume (at the flow density) entrained from the bed so far (massExchange)"},
+            {"detrained", "scalar", "0", ">= 0", "m3", "",
+             "volume detrained in resistance areas so far (massExchange)"},
             {"patches", "dictionary", "required", "", "", "",
              "per patch <patch> { type; out (net volume out); lastStep (the last step's) }"},
         }
@@ -354,7 +419,11 @@ std::vector<table> makeTables()
         " earlier ones where they give a value.",
         true, "",
         {
-            {"default", "scalar", "required", ">= 0", "m", "", "h outside every region"},
+            {"field", "word", "h", "h | hEnt | resistance", "", "",
+             "the field set: h (the release), hEnt (entrainable layer [m], e.g."
+             " system/entrainmentDict) or resistance (resistance factor [-], e.g."
+             " system/resistanceDict); gfSetRelease -dict <name> reads another dictionary"},
+            {"default", "scalar", "required", ">= 0", "m", "", "the field outside every region"},
             {"Us", "vector", "-", "", "m/s", "",
              "initial velocity everywhere, made tangential (written to Us)"},
             {"regions", "list", "required", "", "", "",
