@@ -414,6 +414,192 @@ static void outline_and_map_are_written(void **state)
     gf_raster_free(&dem);
 }
 
+/* dem: a DEM of 41 x 41 pixels of 1 m, lower-left corner (0, 0), pixel
+ * centres at (c + 0.5, 40.5 - r), elevation z0 + gx x, written to the ESRI
+ * grid name in the test folder and read back */
+static void plane_dem(const char *name, double z0, double gx, gf_raster *dem)
+{
+    const char *path = tmp(name);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fprintf(f, "ncols 41\nnrows 41\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n");
+    for (int r = 0; r < 41; ++r) {
+        for (int c = 0; c < 41; ++c)
+            fprintf(f, "%.17g ", z0 + gx * (c + 0.5));
+        fputc('\n', f);
+    }
+    fclose(f);
+    assert_int_equal(gf_raster_read(path, dem), GF_SUCCESS);
+}
+
+#define TAN60 1.7320508075688772
+
+/* specification section 3: on flat ground at 100 m, a straight crown line
+ * x = 20.5 at elevation 105 (H = 5 m above ground), wall slope 60 deg:
+ * exactly 105 on the line, 105 - tan(60) d at distance d = 1, 2, the ground
+ * from d = 3 (105 - 3 tan 60 < 100) on; a short line has rounded ends */
+static void dam_on_flat_ground_has_the_crown_height_and_the_wall_slope(void **state)
+{
+    (void)state;
+    gf_raster dem;
+    plane_dem("flat.asc", 100.0, 0.0, &dem);
+    const double line[6] = {20.5, -5.0, 105.0, 20.5, 46.0, 105.0};
+    size_t raised = 0;
+    double rise = 0;
+    assert_int_equal(gf_dam_burn(&dem, 2, line, 60.0, &raised, &rise), GF_SUCCESS);
+    assert_int_equal(raised, 41 * 5);
+    assert_close(rise, 5.0, 1e-12);
+    for (int r = 0; r < 41; ++r)
+        for (int c = 0; c < 41; ++c) {
+            const int d = abs(c - 20);
+            const double want = d <= 2 ? 105.0 - TAN60 * d : 100.0;
+            assert_close(dem.z[r * 41 + c], want, 1e-12);
+        }
+    gf_raster_free(&dem);
+    /* a short line (20.5, 10.5) - (20.5, 30.5): beyond its north end the
+     * nearest point is the end; pixel (21.5, 32.5) is sqrt(5) from it */
+    plane_dem("flat.asc", 100.0, 0.0, &dem);
+    const double shrt[6] = {20.5, 10.5, 105.0, 20.5, 30.5, 105.0};
+    assert_int_equal(gf_dam_burn(&dem, 2, shrt, 60.0, NULL, NULL), GF_SUCCESS);
+    assert_close(dem.z[(40 - 32) * 41 + 21], 105.0 - TAN60 * sqrt(5.0), 1e-12);
+    assert_close(dem.z[(40 - 30) * 41 + 20], 105.0, 1e-12);
+    assert_close(dem.z[(40 - 34) * 41 + 20], 100.0, 0); /* 4 m beyond the end */
+    gf_raster_free(&dem);
+}
+
+/* sloping ground z = 100 + 0.25 x (exact in float32, as GDAL reads the
+ * ESRI grid) and a crown rising along the line
+ * z_c(y) = 110 + 0.1 (y + 5), slope 45 deg: every pixel is
+ * max(ground, z_c(y) - |x - 20.5|) */
+static void dam_on_sloping_ground_follows_the_crown_elevation(void **state)
+{
+    (void)state;
+    gf_raster dem;
+    plane_dem("plane.asc", 100.0, 0.25, &dem);
+    const double line[9] = {20.5, -5.0, 110.0, 20.5, 20.0, 112.5, 20.5, 46.0, 115.1};
+    size_t raised = 0;
+    double rise = 0;
+    assert_int_equal(gf_dam_burn(&dem, 3, line, 45.0, &raised, &rise), GF_SUCCESS);
+    size_t want_raised = 0;
+    double want_rise = 0;
+    for (int r = 0; r < 41; ++r)
+        for (int c = 0; c < 41; ++c) {
+            const double x = c + 0.5, y = 40.5 - r, ground = 100.0 + 0.25 * x;
+            const double dam = 110.0 + 0.1 * (y + 5.0) - fabs(x - 20.5);
+            if (dam > ground)
+                ++want_raised, want_rise = fmax(want_rise, dam - ground);
+            assert_close(dem.z[r * 41 + c], fmax(ground, dam), 1e-9);
+        }
+    assert_int_equal(raised, want_raised);
+    assert_close(rise, want_rise, 1e-9);
+    assert_close(rise, 110.0 + 0.1 * 45.5 - (100.0 + 0.25 * 20.5), 1e-9); /* the line's top end */
+    gf_raster_free(&dem);
+}
+
+static void write_line(const char *path, const char *props, const char *coords)
+{
+    char text[512];
+    snprintf(text, sizeof text,
+             "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":"
+             "{%s},\"geometry\":{\"type\":\"LineString\",\"coordinates\":%s}}]}", props, coords);
+    write_text(path, text);
+}
+
+static void expect_detail(const char *a, const char *b)
+{
+    const char *d = gf_error_detail();
+    if (!strstr(d, a) || (b && !strstr(d, b)))
+        fail_msg("detail '%s' lacks '%s' or '%s'", d, a, b ? b : "");
+}
+
+/* no heights (2D line, non-finite z), fewer than 2 points, wall slopes 0,
+ * 90 and 95 deg, a line off the DEM, no slope: refused with the reason; a
+ * refused burn leaves the DEM as it was */
+static void bad_dams_are_refused_with_the_reason(void **state)
+{
+    (void)state;
+    gf_raster dem;
+    plane_dem("flat.asc", 100.0, 0.0, &dem);
+    const double ok[6] = {20.5, -5.0, 105.0, 20.5, 46.0, 105.0};
+    assert_int_equal(gf_dam_burn(&dem, 1, ok, 60.0, NULL, NULL), GF_EDOM);
+    expect_detail("at least 2", NULL);
+    const double slopes[3] = {0.0, 90.0, 95.0};
+    for (int k = 0; k < 3; ++k) {
+        assert_int_equal(gf_dam_burn(&dem, 2, ok, slopes[k], NULL, NULL), GF_EDOM);
+        expect_detail("outside (0, 90)", NULL);
+    }
+    const double noz[6] = {20.5, -5.0, NAN, 20.5, 46.0, NAN};
+    assert_int_equal(gf_dam_burn(&dem, 2, noz, 60.0, NULL, NULL), GF_EDOM);
+    expect_detail("height", NULL);
+    const double off[6] = {50.0, -5.0, 105.0, 60.0, 46.0, 105.0};
+    assert_int_equal(gf_dam_burn(&dem, 2, off, 60.0, NULL, NULL), GF_EDOM);
+    expect_detail("outside the DEM", NULL);
+    for (size_t i = 0; i < 41 * 41; ++i)
+        assert_close(dem.z[i], 100.0, 0);
+    /* a segment crossing the DEM with both ends outside is on it */
+    const double across[6] = {-10.0, 20.0, 105.0, 50.0, 20.0, 105.0};
+    assert_int_equal(gf_dam_burn(&dem, 2, across, 60.0, NULL, NULL), GF_SUCCESS);
+    gf_raster_free(&dem);
+
+    gf_dam d;
+    const char *p2 = tmp("dam2d.geojson");
+    write_line(p2, "\"slope\":60", "[[0,0],[10,0]]");
+    assert_int_equal(gf_dam_read(p2, "slope", NAN, &d), GF_EDOM);
+    expect_detail(p2, "without heights");
+    assert_null(d.xyz);
+    const char *steep = tmp("dam95.geojson");
+    write_line(steep, "\"slope\":95", "[[0,0,5],[10,0,5]]");
+    assert_int_equal(gf_dam_read(steep, "slope", NAN, &d), GF_EDOM);
+    expect_detail(steep, "95 deg (slope) outside (0, 90)");
+    const char *flat = tmp("dam0.geojson");
+    write_line(flat, "\"slope\":0", "[[0,0,5],[10,0,5]]");
+    assert_int_equal(gf_dam_read(flat, "slope", NAN, &d), GF_EDOM);
+    expect_detail(flat, "outside (0, 90)");
+    const char *none = tmp("damnone.geojson");
+    write_line(none, "\"name\":\"x\"", "[[0,0,5],[10,0,5]]");
+    assert_int_equal(gf_dam_read(none, "slope", NAN, &d), GF_EDOM);
+    expect_detail(none, "no wall slope");
+    assert_int_equal(gf_dam_read(none, "slope", 90.0, &d), GF_EDOM);
+    expect_detail(none, "90 deg (default) outside (0, 90)");
+    /* without the attribute the given slope; a polygon is not a line */
+    assert_int_equal(gf_dam_read(none, "slope", 30.0, &d), GF_SUCCESS);
+    assert_int_equal(d.n, 2);
+    assert_close(d.slope, 30.0, 0);
+    assert_close(d.xyz[5], 5.0, 0);
+    gf_dam_free(&d);
+    assert_int_equal(gf_dam_read(geojson(""), "slope", 30.0, &d), GF_EDOM);
+    expect_detail("not a line", NULL);
+    assert_int_equal(gf_dam_read(tmp("nodam.shp"), "slope", 30.0, &d), GF_EIO);
+    expect_detail("nodam.shp", NULL);
+}
+
+/* avaKot's dam (AvaFrame Inputs/DAM/dam.shp): a 3D line of 6 points with
+ * absolute crown elevations 1184 .. 1079 m, slope 60 deg; burned into the
+ * avaKot DEM it raises the ground by 5-15 m (the crown is 8.6-9.8 m above
+ * the ground at its points) */
+static void avakot_dam_is_read_and_burned(void **state)
+{
+    (void)state;
+    gf_dam d;
+    assert_int_equal(gf_dam_read(GF_SOURCE_DIR "/tutorials/avaKot/Inputs/DAM/dam.shp", "slope",
+                                 NAN, &d), GF_SUCCESS);
+    assert_int_equal(d.n, 6);
+    assert_close(d.slope, 60.0, 0);
+    assert_close(d.xyz[2], 1184.0, 0);
+    assert_close(d.xyz[17], 1079.0, 0);
+    assert_true(strstr(d.wkt, "Austria Lambert") != NULL);
+    gf_raster dem;
+    assert_int_equal(gf_raster_read(GF_SOURCE_DIR "/tutorials/avaKot/Inputs/avaKot.asc", &dem),
+                     GF_SUCCESS);
+    size_t raised = 0;
+    double rise = 0;
+    assert_int_equal(gf_dam_burn(&dem, d.n, d.xyz, d.slope, &raised, &rise), GF_SUCCESS);
+    assert_true(raised > 100 && raised < 2000);
+    assert_true(rise > 5.0 && rise < 15.0);
+    gf_raster_free(&dem);
+    gf_dam_free(&d);
+}
+
 int main(void)
 {
     CPLSetConfigOption("CPL_LOG", "/dev/null");
@@ -426,6 +612,10 @@ int main(void)
         cmocka_unit_test(mesh_grid_skips_nodata_and_follows_the_crop),
         cmocka_unit_test(face_values_map_onto_the_dem_grid),
         cmocka_unit_test(outline_and_map_are_written),
+        cmocka_unit_test(dam_on_flat_ground_has_the_crown_height_and_the_wall_slope),
+        cmocka_unit_test(dam_on_sloping_ground_follows_the_crown_elevation),
+        cmocka_unit_test(bad_dams_are_refused_with_the_reason),
+        cmocka_unit_test(avakot_dam_is_read_and_burned),
     };
     const int rc = gf_run_tests("tests", tests, setup, teardown);
     GDALDestroyDriverManager();

@@ -8,7 +8,9 @@ Description
     ASCII grid, GeoTIFF, ...), NODATA cells are left out, the mesh can be
     cropped to a box or polygons and coarsened.  One hexahedron per DEM
     quad between four valid nodes (every k-th node with coarsening k); its
-    top face on the terrain, its bottom 'depth' metres below.  Patches:
+    top face on the terrain, its bottom 'depth' metres below.  An optional
+    dam (a 3D crown line and a wall slope) raises the DEM before meshing;
+    the raised DEM is written to constant/demWithDam.tif.  Patches:
         terrain  the top faces: the area mesh (faMeshDefinition polyMeshPatches)
         sides    the lateral faces: the area mesh's boundary
         base     the bottom faces
@@ -57,6 +59,19 @@ int main(int argc, char *argv[])
         << "Mesh: nodes every " << g.k << " DEM node(s), " << g.ni << " x " << g.nj
         << " node grid, " << g.n_quads << " faces of " << g.k*tc.dem.gt[1] << " m" << nl
         << "Offset (subtracted from the georeferenced coordinates) " << tc.offset << endl;
+    if (tc.hasDam)
+    {
+        // the raised DEM beside the case, on the DEM's grid and georeferencing
+        const fileName raised = runTime.path()/"constant"/"demWithDam.tif";
+        granflow::terrainCase::check
+        (
+            dict, "dam", gf_raster_write(raised.c_str(), "GTiff", &tc.dem, tc.dem.z)
+        );
+        Info<< "Dam " << tc.damFile << ": crown line of " << label(tc.dam.n) << " points, wall slope "
+            << tc.dam.slope << " deg; " << label(tc.damRaised) << " DEM cells raised, by at most "
+            << tc.damRise << " m; the raised DEM (meshed) written to constant/demWithDam.tif"
+            << endl;
+    }
 
     // nodes used by a face: top points 0..n-1, bottom n..2n-1
     const label ni = g.ni, nj = g.nj, nqi = ni - 1;
@@ -154,6 +169,7 @@ int main(int argc, char *argv[])
     props.add("depth", tc.depth);
     if (tc.hasBox) props.add("cropBox", tc.box);
     if (!tc.cropFile.empty()) props.add("cropPolygons", tc.cropFile);
+    if (tc.hasDam) props.add("dam", tc.damDict);
     props.add("offset", tc.offset);
     props.add("faces", label(g.n_quads));
     props.add("cellSize", g.k*tc.dem.gt[1]);

@@ -92,6 +92,29 @@ std::vector<row> terrainRows()
         {"offset", "vector", "-", "", "m", "",
          "subtracted from the georeferenced coordinates; default the south-west corner of the"
          " mesh nodes and their lowest elevation, rounded down to metres"},
+        {"dam", "dictionary", "-", "", "", "",
+         "a dam burned into the DEM before meshing (mass-exchange specification, section 3):"
+         " entries file, slope; gfTerrainMesh writes the raised DEM to constant/demWithDam.tif"},
+    };
+}
+
+//- The dam sub-dictionary of terrainDict / terrainProperties
+table damTable(const std::string& parent, const std::string& file, const std::string& program)
+{
+    return
+    {
+        parent + "/dam", file, "dam/", program,
+        "A dam (mass-exchange specification, section 3): the DEM becomes the larger of the"
+        " ground and the dam surface z_c - tan(slope) d, z_c the crown elevation at the nearest"
+        " point of the crown line and d the horizontal distance to it.",
+        true, "",
+        {
+            {"file", "fileName", "required", "", "", "",
+             "the crown line: one 3D line (OGR: shapefile, GeoJSON; AvaFrame Inputs/DAM/*.shp),"
+             " z the crown's elevation above sea level at each point; relative to the case"},
+            {"slope", "scalar", "-", "(0, 90)", "deg", "",
+             "wall slope from the horizontal; default the line's attribute slope (AvaFrame's)"},
+        }
     };
 }
 
@@ -492,6 +515,7 @@ std::vector<table> makeTables()
         "A DEM to a terrain-following slab mesh whose top patch is the area mesh.",
         true, "", terrainRows()
     });
+    T.push_back(damTable("terrainDict", "system/terrainDict", "gfTerrainMesh"));
     {
         table t
         {
@@ -511,6 +535,10 @@ std::vector<table> makeTables()
         t.rows.insert(t.rows.end(), derived.begin(), derived.end());
         T.push_back(t);
     }
+    T.push_back
+    (
+        damTable("terrainProperties", "constant/terrainProperties", "gfSetRelease, gfHazardMaps")
+    );
     return T;
 }
 

@@ -142,6 +142,43 @@ gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const dou
 gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *values,
                         double vmin, double vmax);
 
+/* Dams (mass-exchange specification, section 3 "Dams"): a crown line, a
+ * polyline of n >= 2 points (x y z interleaved, z the crown's absolute
+ * elevation, as AvaFrame's Inputs/DAM lines carry it), and a wall slope
+ * beta from the horizontal in (0, 90) degrees.  The dam surface at a point
+ * at horizontal distance d from the line is z_c - tan(beta) d, z_c the
+ * crown elevation (linear along the segment) at the nearest point of the
+ * line; the DEM becomes the larger of the ground and that surface ("the DEM
+ * raised to the crown height along it and falling off at slope beta on both
+ * sides (the larger of the original and the dam surface)"), so the ends of
+ * the line are rounded.  NODATA pixels stay NODATA. */
+typedef struct gf_dam {
+    size_t n;          /* points of the crown line */
+    double *xyz;       /* [3n] x y z interleaved, z absolute elevation [m] */
+    double slope;      /* wall slope beta [deg] */
+    char *wkt;         /* CRS of the layer ("" when none) */
+} gf_dam;
+
+/* Read a dam from the first feature of the first layer of a vector file
+ * (OGR: shapefile, GeoJSON): a line string with z (a multi line string
+ * with one part is taken as that part), the wall slope from the numeric
+ * attribute slope_attribute (AvaFrame: "slope") when the feature has it,
+ * else slope_default (NAN: none).  Refused (GF_EIO, GF_EDOM), naming the
+ * file: a file OGR cannot open, no feature, a geometry that is not a line,
+ * a 2D line or a point without a finite z (the crown needs its height),
+ * fewer than 2 points, no slope, a slope outside (0, 90) degrees. */
+gf_status gf_dam_read(const char *path, const char *slope_attribute, double slope_default,
+                      gf_dam *d);
+void gf_dam_free(gf_dam *d);
+
+/* Burn the dam (n points xyz, slope in degrees) into dem in place (see
+ * gf_dam above).  n_raised (may be NULL): pixels raised; max_rise (may be
+ * NULL): the largest rise [m].  Refused (GF_EDOM; the DEM untouched): fewer
+ * than 2 points, a non-finite coordinate (a line without heights), a slope
+ * outside (0, 90) degrees, a line that does not touch the DEM's extent. */
+gf_status gf_dam_burn(gf_raster *dem, size_t n, const double *xyz, double slope,
+                      size_t *n_raised, double *max_rise);
+
 #ifdef __cplusplus
 }
 #endif
