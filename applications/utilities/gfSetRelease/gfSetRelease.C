@@ -45,6 +45,13 @@ Description
         default  0;
         regions  ( polygons { file "Inputs/ENT/entrainment.shp"; attribute thickness; } );
 
+    An ensemble member's release (gfRunEnsemble; hazard-analysis
+    specification, section 4): with -ci95Sample z (z in [-1, 1]) every
+    polygons region's thickness d becomes d + z ci95, the half-width of its
+    95 % confidence interval given by the region's 'ci95' [m] or its
+    polygons' attribute 'ci95Attribute' (AvaFrame's ci95); a region without
+    either, and a thickness that would fall below 0, are refused.
+
     A missing or negative thickness attribute and a polygon that covers no
     face centre are errors naming the dictionary, the file and the entry.
 
@@ -77,6 +84,12 @@ int main(int argc, char *argv[])
         "dict", "name",
         "read system/<name> instead of system/releaseDict (e.g. entrainmentDict, resistanceDict)"
     );
+    argList::addOption
+    (
+        "ci95Sample", "z",
+        "z in [-1, 1]: every polygons region's thickness d becomes d + z ci95, ci95 the region's"
+        " ci95 entry or ci95Attribute (an ensemble member's release thickness; gfRunEnsemble)"
+    );
     granflow::keyword::addOptions();   // -keywords, -version
     if (granflow::keyword::earlyOptions(argc, argv))
     {
@@ -89,6 +102,14 @@ int main(int argc, char *argv[])
     #include "createFaMesh.H"
 
     const word dictName(args.getOrDefault<word>("dict", "releaseDict"));
+    const bool ci95On = args.found("ci95Sample");
+    const scalar ci95Sample = args.getOrDefault<scalar>("ci95Sample", 0);
+    if (ci95On && !(ci95Sample >= -1 && ci95Sample <= 1))
+    {
+        FatalErrorInFunction
+            << "-ci95Sample " << ci95Sample << ": outside [-1, 1] (the thickness d + z ci95 spans"
+            << " the 95 % confidence interval for z from -1 to 1)" << exit(FatalError);
+    }
     const fileName dictFile("system"/dictName);
     IOdictionary dict
     (
@@ -281,6 +302,53 @@ int main(int argc, char *argv[])
                     << "regions/polygons (file " << file
                     << (attr.empty() ? word::null : word(", attribute " + attr))
                     << ") of " << dictFile << ": " << gf_error_detail() << exit(FatalIOError);
+            }
+            // an ensemble member's thickness: d + z ci95 per polygon
+            if (kw::found(r, t, "ci95") && kw::found(r, t, "ci95Attribute"))
+            {
+                gf_polygons_free(&P);
+                FatalIOErrorInFunction(r)
+                    << "region polygons (file " << file << ") takes one of ci95 [m] and ci95Attribute,"
+                    << " not both" << exit(FatalIOError);
+            }
+            if (ci95On)
+            {
+                scalar ci = 0;
+                const bool byCi = kw::readIfPresent<scalar>(r, t, "ci95", ci);
+                if (!byCi && !kw::found(r, t, "ci95Attribute"))
+                {
+                    gf_polygons_free(&P);
+                    FatalIOErrorInFunction(r)
+                        << "-ci95Sample " << ci95Sample << " given, but region polygons (file " << file
+                        << ") of " << dictFile << " has no ci95 [m] or ci95Attribute: the confidence"
+                        << " interval of its thickness is unknown" << exit(FatalIOError);
+                }
+                gf_polygons C95;
+                const std::string ciAttr = byCi ? std::string() : std::string(kw::read<word>(r, t, "ci95Attribute"));
+                if (gf_polygons_read(path.c_str(), byCi ? nullptr : ciAttr.c_str(), ci, &C95) != GF_SUCCESS)
+                {
+                    gf_polygons_free(&P);
+                    FatalIOErrorInFunction(dict)
+                        << "regions/polygons (file " << file << ", ci95Attribute " << ciAttr << ") of "
+                        << dictFile << ": " << gf_error_detail() << exit(FatalIOError);
+                }
+                for (size_t k = 0; k < P.n; ++k)
+                {
+                    const scalar d = P.value[k] + ci95Sample*C95.value[k];
+                    if (d < 0)
+                    {
+                        gf_polygons_free(&C95);
+                        gf_polygons_free(&P);
+                        FatalIOErrorInFunction(r)
+                            << "polygon " << label(k) << " of " << file << ": thickness " << P.value[k]
+                            << " m + ci95Sample " << ci95Sample << " x ci95 " << C95.value[k] << " m = " << d
+                            << " m is negative: the confidence interval reaches below 0" << exit(FatalIOError);
+                    }
+                    Info<< "    polygon " << label(k) << ": thickness " << P.value[k] << " m + "
+                        << ci95Sample << " x ci95 " << C95.value[k] << " m = " << d << " m (-ci95Sample)" << endl;
+                    P.value[k] = d;
+                }
+                gf_polygons_free(&C95);
             }
             const string demCrs = kw::read<string>(terrain, tp, "crs");
             if (demCrs.size() && !*P.wkt)

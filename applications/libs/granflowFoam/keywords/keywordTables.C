@@ -505,6 +505,12 @@ std::vector<table> makeTables()
              "one thickness for every polygon (instead of attribute)"},
             {"measured", "word", "normal", "normal | vertical", "", "polygons",
              "the thickness is along the terrain normal (h = d) or vertical (h = d cos(slope))"},
+            {"ci95", "scalar", "-", ">= 0", "m", "polygons",
+             "half-width of the 95 % confidence interval of every polygon's thickness: with"
+             " gfSetRelease -ci95Sample z the thickness is d + z ci95 (ensembles; not with ci95Attribute)"},
+            {"ci95Attribute", "word", "-", "", "", "polygons",
+             "numeric attribute of the polygons with each one's ci95 [m] (AvaFrame's ci95;"
+             " instead of ci95)"},
         }
     );
 

@@ -14,6 +14,7 @@
 #include "granflow/dg1d.h"
 #include "granflow/sh1d.h"
 #include "granflow/surface.h"
+#include "granflow/ensemble.h"
 /* test and benchmark helpers: granflow/verification.h */
 
 #define GRANFLOW_VERSION "0.1.0"

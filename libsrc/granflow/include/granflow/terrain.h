@@ -179,6 +179,24 @@ void gf_dam_free(gf_dam *d);
 gf_status gf_dam_burn(gf_raster *dem, size_t n, const double *xyz, double slope,
                       size_t *n_raised, double *max_rise);
 
+/* Probability map of an ensemble (hazard-analysis specification, section
+ * 4): per pixel, the fraction of the n member rasters (paths; any raster
+ * GDAL reads, on one grid) whose value exceeds threshold (strictly, e.g.
+ * ppr > 1 kPa), 0..1.  A member's NODATA pixel counts as not reached; a
+ * pixel NODATA in every member is NODATA (NAN).  On success out is the
+ * first member's grid and CRS with z the probability (gf_raster_free it).
+ * Refused, naming the file: a raster GDAL cannot read, members on different
+ * grids (size, origin or pixel size), a threshold that is not finite. */
+gf_status gf_probability_map(size_t n, const char *const *paths, double threshold, gf_raster *out);
+
+/* Contour lines of values on grid at the nlev levels (GDAL's contour
+ * generator; NAN pixels are left out): a GeoJSON file of line strings with
+ * their level (WGS 84 as RFC 7946 asks when the grid has a CRS; NULL: not
+ * written) and a plain text file of "x y level" rows, one block per line
+ * (the grid's coordinates, for gnuplot; NULL: not written). */
+gf_status gf_raster_contours(const char *geojson, const char *xy_path, const gf_raster *grid,
+                             const double *values, size_t nlev, const double *levels);
+
 #ifdef __cplusplus
 }
 #endif

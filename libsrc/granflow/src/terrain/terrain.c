@@ -1156,3 +1156,188 @@ done:
     free(img);
     return st;
 }
+
+/*------------------------------------------------------ probability maps --*/
+
+/* Same grid: size, origin and pixel size (to a millionth of a pixel) */
+static int same_grid(const gf_raster *a, const gf_raster *b)
+{
+    if (a->nx != b->nx || a->ny != b->ny)
+        return 0;
+    const double tol = 1e-6 * fabs(a->gt[1]);
+    for (int i = 0; i < 6; ++i)
+        if (fabs(a->gt[i] - b->gt[i]) > tol)
+            return 0;
+    return 1;
+}
+
+gf_status gf_probability_map(size_t n, const char *const *paths, double threshold, gf_raster *out)
+{
+    if (!out)
+        return gf_fail(GF_EINVAL, "probability map: null argument");
+    memset(out, 0, sizeof *out);
+    if (n < 1 || !paths)
+        return gf_fail(GF_EINVAL, "probability map: no member rasters (n = %zu)", n);
+    if (!isfinite(threshold))
+        return gf_fail(GF_ENONFINITE, "probability map: threshold %g is not a finite number", threshold);
+    gf_status st = GF_SUCCESS;
+    unsigned *count = NULL;
+    unsigned char *seen = NULL;
+    for (size_t m = 0; m < n; ++m) {
+        gf_raster r;
+        if ((st = gf_raster_read(paths[m], &r))) {
+            char why[512];
+            snprintf(why, sizeof why, "%s", gf_error_detail());
+            st = gf_fail(st, "probability map: member %zu of %zu: %s", m + 1, n, why);
+            break;
+        }
+        const size_t np = (size_t)r.nx * (size_t)r.ny;
+        if (m == 0) {
+            *out = r;   /* the grid and CRS of the first member; z becomes the probability */
+            count = calloc(np, sizeof *count);
+            seen = calloc(np, 1);
+            if (!count || !seen) {
+                st = gf_fail(GF_ENOMEM, "probability map: out of memory for %d x %d cells", r.nx, r.ny);
+                break;
+            }
+        } else if (!same_grid(out, &r)) {
+            st = gf_fail(GF_EDOM,
+                         "probability map: raster %s (member %zu) is %d x %d cells, origin (%.10g, %.10g),"
+                         " pixel %.10g; the first member %s is %d x %d, origin (%.10g, %.10g), pixel %.10g:"
+                         " every member must be on one grid",
+                         paths[m], m + 1, r.nx, r.ny, r.gt[0], r.gt[3], r.gt[1], paths[0], out->nx, out->ny,
+                         out->gt[0], out->gt[3], out->gt[1]);
+            gf_raster_free(&r);
+            break;
+        }
+        for (size_t i = 0; i < np; ++i) {
+            if (isnan(r.z[i]))
+                continue;
+            seen[i] = 1;
+            count[i] += r.z[i] > threshold;
+        }
+        if (m > 0)
+            gf_raster_free(&r);
+    }
+    if (!st) {
+        const size_t np = (size_t)out->nx * (size_t)out->ny;
+        out->n_valid = 0;
+        for (size_t i = 0; i < np; ++i) {
+            out->z[i] = seen[i] ? (double)count[i] / (double)n : NAN;
+            out->n_valid += seen[i];
+        }
+    } else
+        gf_raster_free(out);
+    free(count);
+    free(seen);
+    return st;
+}
+
+gf_status gf_raster_contours(const char *geojson, const char *xy_path, const gf_raster *grid,
+                             const double *values, size_t nlev, const double *levels)
+{
+    gdal_init();
+    if (!grid || !values || nlev < 1 || !levels)
+        return gf_fail(GF_EINVAL, "contours: no grid, values or levels");
+    for (size_t k = 0; k < nlev; ++k)
+        if (!isfinite(levels[k]))
+            return gf_fail(GF_ENONFINITE, "contours: level %zu is %g, not a finite number", k, levels[k]);
+    const size_t np = (size_t)grid->nx * (size_t)grid->ny;
+    const double nd = -9999.0;
+    double *v = malloc(np * sizeof *v);
+    if (!v)
+        return gf_fail(GF_ENOMEM, "contours: out of memory");
+    for (size_t i = 0; i < np; ++i)
+        v[i] = isnan(values[i]) ? nd : values[i];
+    gf_status st = GF_SUCCESS;
+    GDALDatasetH mem = mem_raster(grid, grid->nx, grid->ny, 1, GDT_Float64), vmem = NULL, out = NULL;
+    OGRSpatialReferenceH srs = NULL;
+    FILE *xy = NULL;
+    const char *what = geojson ? geojson : xy_path ? xy_path : "(none)";
+    if (!mem) {
+        st = gf_fail(GF_EIO, "contours %s: %s", what, gdal_msg());
+        goto done;
+    }
+    GDALRasterBandH b = GDALGetRasterBand(mem, 1);
+    if (GDALRasterIO(b, GF_Write, 0, 0, grid->nx, grid->ny, v, grid->nx, grid->ny, GDT_Float64, 0, 0) != CE_None) {
+        st = gf_fail(GF_EIO, "contours %s: %s", what, gdal_msg());
+        goto done;
+    }
+    if (grid->wkt && *grid->wkt)
+        srs = geojson_srs(grid->wkt);
+    GDALDriverH vdrv = GDALGetDriverByName("Memory"), gj = GDALGetDriverByName("GeoJSON");
+    vmem = vdrv ? GDALCreate(vdrv, "", 0, 0, 0, GDT_Unknown, NULL) : NULL;
+    if (!vmem || !gj) {
+        st = gf_fail(GF_EIO, "contours %s: GDAL lacks the Memory or GeoJSON driver", what);
+        goto done;
+    }
+    OGRLayerH ml = GDALDatasetCreateLayer(vmem, "contours", srs, wkbLineString, NULL);
+    OGRFieldDefnH fid = OGR_Fld_Create("id", OFTInteger), fl = OGR_Fld_Create("level", OFTReal);
+    OGR_L_CreateField(ml, fid, TRUE);
+    OGR_L_CreateField(ml, fl, TRUE);
+    OGR_Fld_Destroy(fid);
+    OGR_Fld_Destroy(fl);
+    if (GDALContourGenerate(b, 0.0, 0.0, (int)nlev, (double *)levels, TRUE, nd, ml, 0, 1, NULL, NULL) != CE_None) {
+        st = gf_fail(GF_EIO, "contours %s: contouring failed (%s)", what, gdal_msg());
+        goto done;
+    }
+    if (xy_path && !(xy = fopen(xy_path, "w"))) {
+        st = gf_fail(GF_EIO, "contours %s: cannot write it", xy_path);
+        goto done;
+    }
+    if (xy)
+        fprintf(xy, "# contour lines: x y level (the grid's coordinates), one block per line\n");
+    OGRLayerH ol = NULL;
+    if (geojson) {
+        unlink(geojson);
+        CPLPushErrorHandler(CPLQuietErrorHandler);
+        out = GDALCreate(gj, geojson, 0, 0, 0, GDT_Unknown, NULL);
+        CPLPopErrorHandler();
+        if (!out) {
+            st = gf_fail(GF_EIO, "contours %s: GDAL cannot write it (%s)", geojson, gdal_msg());
+            goto done;
+        }
+        ol = GDALDatasetCreateLayer(out, "contours", srs, wkbLineString, srs ? rfc7946 : NULL);
+        OGRFieldDefnH f1 = OGR_Fld_Create("level", OFTReal);
+        OGR_L_CreateField(ol, f1, TRUE);
+        OGR_Fld_Destroy(f1);
+    }
+    OGR_L_ResetReading(ml);
+    OGRFeatureH f;
+    while ((f = OGR_L_GetNextFeature(ml)) != NULL) {
+        OGRGeometryH geom = OGR_F_GetGeometryRef(f);
+        const double level = OGR_F_GetFieldAsDouble(f, 1);
+        if (xy && geom) {
+            const int npt = OGR_G_GetPointCount(geom);
+            for (int i = 0; i < npt; ++i)
+                fprintf(xy, "%.3f %.3f %.6g\n", OGR_G_GetX(geom, i), OGR_G_GetY(geom, i), level);
+            fprintf(xy, "\n");
+        }
+        if (ol) {
+            OGRFeatureH g = OGR_F_Create(OGR_L_GetLayerDefn(ol));
+            OGR_F_SetGeometry(g, geom);
+            OGR_F_SetFieldDouble(g, 0, level);
+            const OGRErr e = OGR_L_CreateFeature(ol, g);
+            OGR_F_Destroy(g);
+            if (e != OGRERR_NONE) {
+                OGR_F_Destroy(f);
+                st = gf_fail(GF_EIO, "contours %s: writing a line failed (%s)", geojson, gdal_msg());
+                goto done;
+            }
+        }
+        OGR_F_Destroy(f);
+    }
+done:
+    if (xy && fclose(xy) != 0 && !st)
+        st = gf_fail(GF_EIO, "contours %s: writing failed", xy_path);
+    if (out)
+        GDALClose(out);
+    if (vmem)
+        GDALClose(vmem);
+    if (mem)
+        GDALClose(mem);
+    if (srs)
+        OSRDestroySpatialReference(srs);
+    free(v);
+    return st;
+}
