@@ -55,6 +55,7 @@ Usage
 #include "massExchange.H"
 #include "peakFields.H"
 #include "cpuSections.H"
+#include "runProfile.H"
 
 #include "keyword.H"
 #include "keepFreedMemory.H"
@@ -63,6 +64,7 @@ Usage
 int main(int argc, char *argv[])
 {
     granflow::keepFreedMemory();   // the implicit scheme's many temporary fields (keepFreedMemory.H)
+    granflow::runProfile profile;  // where the wall time and memory go (runProfile.H)
     argList::addNote
     (
         "Shallow granular flow on curved 3D surfaces (Rauter-Tukovic model)"
@@ -76,8 +78,11 @@ int main(int argc, char *argv[])
     #include "setRootCase.H"
     granflow::keyword::banner();
     #include "createTime.H"
+    profile.mark("start and controls");
     #include "createMesh.H"
+    profile.mark("volume mesh");
     #include "createFaMesh.H"
+    profile.mark("area mesh");
     #include "createFields.H"
 
     // the initial volume of the run; a restart continues the balance of the run
@@ -86,6 +91,7 @@ int main(int argc, char *argv[])
     Info<< "Initial mass (volume) " << mass0 << " m3" << nl << endl;
     granflow::peakFields peaks(mesh, aMesh);   // controlDict peakFields yes (peakFields.H)
     peaks.update(h, Us);
+    profile.mark("fields");
     if (explicitScheme)
     {
         #include "explicitLoop.H"
@@ -102,6 +108,9 @@ int main(int argc, char *argv[])
         // its kernel): massExchange simType other than null is refused here
         granflow::readMassExchange(granularProperties, "implicit");
         #include "implicitLoop.H"
+        profile.mark("time loop");
     }
+    profile.report(Info);
+    Info<< "End" << nl << endl;
     return 0;
 }
