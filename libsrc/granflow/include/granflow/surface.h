@@ -169,6 +169,15 @@ void gf_surface_free(gf_surface *s);
 /* Halo exchange used by every stage (NULL: serial, no ghosts allowed). */
 void gf_surface_set_exchange(gf_surface *s, gf_surface_exchange_fn fn, void *ctx);
 
+/* Optional, with an exchange: the owned faces whose values the exchange
+ * sends (the faces next to processor boundaries; n of them, copied).  The
+ * scheme then prepares only those faces' entries of its scratch fields
+ * before an exchange (the active set's ring levels, the positivity marks)
+ * instead of every owned face's, so that a step's cost on a rank follows
+ * its active faces, as in a serial run.  The results are the same either
+ * way.  Refused: a face index outside the owned faces. */
+gf_status gf_surface_set_send_faces(gf_surface *s, size_t n, const int *faces);
+
 /* Exchange of blocks per processor edge: send and recv hold ncomp doubles
  * per ghost g (the processor edge of ghost g): send this rank's block, recv
  * the neighbouring rank's block for the same edge; 0 on success.  Needed by

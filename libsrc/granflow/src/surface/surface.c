@@ -38,7 +38,7 @@ void gf_surface_free(gf_surface *s)
                     s->acc_pn,   s->fh,     s->eacc, s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f, s->act_b, s->neg, s->defer,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
-                    s->fs_other, s->fs_nb, s->fs_geo, s->fs_es, s->pface};
+                    s->fs_other, s->fs_nb, s->fs_geo, s->fs_es, s->pface, s->send_f};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
         free(bufs[i]);
     free(s);

@@ -93,8 +93,14 @@ gf_status gf_surface_build_active(gf_surface *s)
     size_t r1 = nr;
     if (s->m.n_ghosts > 0) {
         double *lvl = s->lvl;
-        for (size_t f = 0; f < nf; ++f)
-            lvl[f] = s->mark_g[f] == st ? 1.0 : 3.0;
+        if (s->send_f) /* only what the exchange sends (gf_surface_set_send_faces) */
+            for (size_t i = 0; i < s->n_send; ++i) {
+                const int f = s->send_f[i];
+                lvl[f] = s->mark_g[f] == st ? 1.0 : 3.0;
+            }
+        else
+            for (size_t f = 0; f < nf; ++f)
+                lvl[f] = s->mark_g[f] == st ? 1.0 : 3.0;
         gf_status x = gf_surface_halo_exchange(s, lvl, 1);
         if (x)
             return x;

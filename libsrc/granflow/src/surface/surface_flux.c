@@ -487,7 +487,11 @@ gf_status gf_surface_edge_fluxes(gf_surface *s, const double *H, double dt, int 
         if (!bad)
             break;
         if (par) { /* processor edges of faces marked on the other side */
-            memset(badf, 0, m->n_faces * sizeof *badf); /* only in a pass that marked faces somewhere */
+            if (s->send_f) /* only what the exchange sends (gf_surface_set_send_faces) */
+                for (size_t i = 0; i < s->n_send; ++i)
+                    badf[s->send_f[i]] = 0.0;
+            else
+                memset(badf, 0, m->n_faces * sizeof *badf); /* only in a pass that marked faces somewhere */
             for (size_t i = 0; i < nbad; ++i)
                 badf[badl[i]] = 1.0;
             if ((st = gf_surface_halo_exchange(s, badf, 1)))

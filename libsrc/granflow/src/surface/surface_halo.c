@@ -1,6 +1,9 @@
 /* Parallel runs of the surface scheme: the caller's halo exchange and
  * global-minimum callbacks, and the halos of the refined start-up levels. */
 #include "surface_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
 #include "surface_halo.h"
 
 void gf_surface_set_min(gf_surface *s, gf_surface_min_fn fn, void *ctx)
@@ -30,6 +33,24 @@ void gf_surface_set_exchange(gf_surface *s, gf_surface_exchange_fn fn, void *ctx
 {
     s->xfn = fn;
     s->xctx = ctx;
+}
+
+gf_status gf_surface_set_send_faces(gf_surface *s, size_t n, const int *faces)
+{
+    if (!s || (n > 0 && !faces))
+        return gf_fail(GF_EINVAL, "gf_surface_set_send_faces: null argument");
+    for (size_t i = 0; i < n; ++i)
+        if (faces[i] < 0 || (size_t)faces[i] >= s->m.n_faces)
+            return gf_fail(GF_EDOM, "gf_surface_set_send_faces: face %d (entry %zu) is not an owned face (0 .. %zu)",
+                           faces[i], i, s->m.n_faces - 1);
+    int *copy = malloc((n + 1) * sizeof *copy);
+    if (!copy)
+        return gf_fail(GF_ENOMEM, "gf_surface_set_send_faces: %zu faces", n);
+    memcpy(copy, faces, n * sizeof *copy);
+    free(s->send_f);
+    s->send_f = copy;
+    s->n_send = n;
+    return GF_SUCCESS;
 }
 
 gf_status gf_surface_halo_exchange(gf_surface *s, double *field, int ncomp)

@@ -113,6 +113,8 @@ struct gf_surface {
     void *xectx;
     gf_surface_min_fn minfn; /* global minima (start-up in parallel) */
     void *minctx;
+    int *send_f;   /* the owned faces the exchange sends (NULL: all; gf_surface_set_send_faces) */
+    size_t n_send;
     double gmag;
     /* face -> edges (all nt faces; a ghost has its one processor edge) */
     size_t *fe_start;
