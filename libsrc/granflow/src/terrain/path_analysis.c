@@ -9,6 +9,7 @@
 #include <ogr_srs_api.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -87,10 +88,12 @@ static gf_status outside(const gf_raster *dem, const char *what, size_t k, doubl
     double b[4];
     centre_box(dem, b);
     const int in_box = x >= b[0] && x <= b[2] && y >= b[1] && y <= b[3];
-    return gf_fail(GF_EDOM, "path %s %zu at (%.2f, %.2f)%s%.1f m along it: %s; the path must lie"
-                            " inside the DEM (pixel centres x %.2f .. %.2f, y %.2f .. %.2f) and"
-                            " off its NODATA (specification section 1)", what, k, x, y,
-                   isnan(s) ? "" : ", ", isnan(s) ? 0.0 : s,
+    char along[64] = "";
+    if (!isnan(s))
+        snprintf(along, sizeof along, ", %.1f m along it", s);
+    return gf_fail(GF_EDOM, "path %s %zu at (%.2f, %.2f)%s: %s; the path must lie inside the DEM"
+                            " (pixel centres x %.2f .. %.2f, y %.2f .. %.2f) and off its NODATA"
+                            " (specification section 1)", what, k, x, y, along,
                    in_box ? "the DEM is NODATA there" : "outside the DEM", b[0], b[2], b[1], b[3]);
 }
 
