@@ -471,7 +471,7 @@ int main(int argc, char **argv)
         double vmax = R.mma[field] > thr ? R.mma[field] : thr * 2;
         FILE *gp = open_out(dir, "pathField.gp", path, sizeof path);
         fprintf(gp, "set datafile separator ','\n"
-                    "set terminal pngcairo size 700,900 font ',10'\nset output 'pathField.png'\n"
+                    "set terminal pngcairo size 700,900 font ',10' noenhanced\nset output 'pathField.png'\n"
                     "set title \"%s: peak %s in path coordinates (s, l)\"\n"
                     "set xlabel 'l [m] (> 0: left looking down the path)'\nset ylabel 's [m]'\n"
                     "set cblabel '%s [%s]'\nset cbrange [0:%g]\n"
@@ -499,7 +499,7 @@ int main(int argc, char **argv)
         const int pc = 5 + 2 * before; /* its cross max in pathProfile.csv */
         gp = open_out(dir, "pathProfile.gp", path, sizeof path);
         fprintf(gp, "set datafile separator ','\n"
-                    "set terminal pngcairo size 1000,500 font ',10'\nset output 'pathProfile.png'\n"
+                    "set terminal pngcairo size 1000,500 font ',10' noenhanced\nset output 'pathProfile.png'\n"
                     "set title \"%s: cross-section maximum and mean of %s along the path; runout angle %.1f deg\"\n"
                     "set xlabel 's [m]'\nset ylabel '%s [%s]'\nset y2label 'z [m]'\nset ytics nomirror\n"
                     "set y2tics\nset grid\nset key top right\n"
@@ -539,8 +539,8 @@ int main(int argc, char **argv)
             const int cc = 6 + R.has[0] + R.has[1] + R.has[2] + 1;
             gp = open_out(dir, "pathCompare.gp", path, sizeof path);
             fprintf(gp, "set datafile separator ','\n"
-                        "set terminal pngcairo size 700,900 font ',10'\nset output 'pathCompare.png'\n"
-                        "set title \"%s against %s: %s > %g %s in the runout area\\nTP %.3f, FP %.3f, FN %.3f of A_ref = %.0f m^2\"\n"
+                        "set terminal pngcairo size 700,900 font ',10' noenhanced\nset output 'pathCompare.png'\n"
+                        "set title \"%s against %s: %s > %g %s in the runout area\\nTP %.3f, FP %.3f, FN %.3f of A_ref = %.0f m2\"\n"
                         "set xlabel 'l [m]'\nset ylabel 's [m]'\nset yrange [%g:%g] reverse\nset xrange [%g:%g]\n"
                         "set cbrange [0.5:4.5]\nset cbtics ('TP' 1, 'FP' 2, 'FN' 3, 'TN' 4)\n"
                         "set palette defined (0.5 '#1a9850', 1.5 '#1a9850', 1.5 '#d73027', 2.5 '#d73027',"
@@ -550,7 +550,7 @@ int main(int argc, char **argv)
                         "plot 'pathGrid.csv' skip 1 using 2:1:($%d > 0 ? $%d : NaN) with image notitle\n",
                     R.name, F.name, field_name[field], thr, field_unit[field],
                     ar.a_ref > 0 ? ar.tp / ar.a_ref : NAN, ar.a_ref > 0 ? ar.fp / ar.a_ref : NAN,
-                    ar.a_ref > 0 ? ar.fn / ar.a_ref : NAN, ar.a_ref, g.s[0], g.s[g.ns - 1], g.l[0],
+                    ar.a_ref > 0 ? ar.fn / ar.a_ref : NAN, ar.a_ref, fmax(g.s[0], g.s[i_beta] - 50.0), g.s[g.ns - 1], g.l[0],
                     g.l[g.nl - 1], g.l[0], g.s[i_beta], g.l[g.nl - 1], g.s[i_beta], cc, cc);
             fclose(gp);
             run_gnuplot(dir, "pathCompare.gp");
