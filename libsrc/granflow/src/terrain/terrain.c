@@ -2,6 +2,7 @@
 #include "granflow/terrain.h"
 #include "granflow/constants.h"
 #include "internal.h"
+#include "terrain_internal.h"
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
@@ -16,7 +17,7 @@
 #include <string.h>
 #include <unistd.h>
 
-static void gdal_init(void)
+void gf_terrain_gdal_init(void)
 {
     static int done = 0;
     if (!done) {
@@ -48,7 +49,7 @@ gf_status gf_raster_read(const char *path, gf_raster *r)
     if (!path || !r)
         return gf_fail(GF_EINVAL, "gf_raster_read: null argument");
     memset(r, 0, sizeof *r);
-    gdal_init();
+    gf_terrain_gdal_init();
     if (access(path, R_OK) != 0)
         return gf_fail(GF_EIO, "DEM %s: no such file or not readable", path);
     CPLErrorReset();
@@ -160,7 +161,7 @@ gf_status gf_raster_write(const char *path, const char *driver, const gf_raster 
 {
     if (!path || !driver || !grid || !values)
         return gf_fail(GF_EINVAL, "gf_raster_write: null argument");
-    gdal_init();
+    gf_terrain_gdal_init();
     const int is_asc = strcmp(driver, "AAIGrid") == 0, is_tif = strcmp(driver, "GTiff") == 0;
     if (!is_asc && !is_tif)
         return gf_fail(GF_ENOTFOUND, "raster %s: driver %s; allowed AAIGrid or GTiff", path, driver);
@@ -245,7 +246,7 @@ static int zvec_push(zvec *v, size_t x)
 
 /* Open a vector file (OGR) for reading; NULL with the failure in *st
  * (GF_EIO naming what and the file) */
-static GDALDatasetH open_vector(const char *what, const char *path, gf_status *st)
+GDALDatasetH gf_terrain_open_vector(const char *what, const char *path, gf_status *st)
 {
     *st = GF_SUCCESS;
     if (access(path, R_OK) != 0) {
@@ -296,11 +297,11 @@ gf_status gf_polygons_read(const char *path, const char *attribute, double value
     if (!path || !p)
         return gf_fail(GF_EINVAL, "gf_polygons_read: null argument");
     memset(p, 0, sizeof *p);
-    gdal_init();
+    gf_terrain_gdal_init();
     if (!attribute && !(isfinite(value) && value >= 0.0))
         return gf_fail(GF_EDOM, "polygons %s: value %g must be finite and >= 0", path, value);
     gf_status opened;
-    GDALDatasetH ds = open_vector("polygons", path, &opened);
+    GDALDatasetH ds = gf_terrain_open_vector("polygons", path, &opened);
     if (!ds)
         return opened;
     gf_status st = GF_SUCCESS;
@@ -464,7 +465,7 @@ int gf_crs_same(const char *wkt_a, const char *wkt_b)
 {
     if (!wkt_a || !wkt_b || !*wkt_a || !*wkt_b)
         return -1;
-    gdal_init();
+    gf_terrain_gdal_init();
     CPLPushErrorHandler(CPLQuietErrorHandler);
     OGRSpatialReferenceH a = OSRNewSpatialReference(wkt_a), b = OSRNewSpatialReference(wkt_b);
     CPLPopErrorHandler();
@@ -658,7 +659,7 @@ static char *rfc7946[] = {"RFC7946=YES", NULL};
 gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
                             double threshold, double *area)
 {
-    gdal_init();
+    gf_terrain_gdal_init();
     if (!(isfinite(threshold) && threshold > 0))
         return gf_fail(GF_EDOM, "outline %s: threshold %g must be finite and > 0", path, threshold);
     const size_t n = (size_t)grid->nx * (size_t)grid->ny;
@@ -747,7 +748,7 @@ done:
 gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const double *xyz, const char *name,
                           size_t nprops, const char *const *keys, const double *values)
 {
-    gdal_init();
+    gf_terrain_gdal_init();
     if (n < 2)
         return gf_fail(GF_EDOM, "line %s: %zu points; a line needs at least 2", path, n);
     GDALDriverH gj = GDALGetDriverByName("GeoJSON");
@@ -814,9 +815,9 @@ gf_status gf_dam_read(const char *path, const char *slope_attribute, double slop
     if (!path || !d)
         return gf_fail(GF_EINVAL, "gf_dam_read: null argument");
     memset(d, 0, sizeof *d);
-    gdal_init();
+    gf_terrain_gdal_init();
     gf_status opened;
-    GDALDatasetH ds = open_vector("dam", path, &opened);
+    GDALDatasetH ds = gf_terrain_open_vector("dam", path, &opened);
     if (!ds)
         return opened;
     gf_status st = GF_SUCCESS;
@@ -1066,7 +1067,7 @@ static void draw_text(unsigned char *img, int nx, int H, int x, int y, const cha
 gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *values,
                         double vmin, double vmax)
 {
-    gdal_init();
+    gf_terrain_gdal_init();
     if (!(vmax > vmin) || !isfinite(vmin) || !isfinite(vmax))
         return gf_fail(GF_EDOM, "map %s: colour range [%g, %g] is empty or not finite", path, vmin, vmax);
     /* below the map: the colour bar, then vmin and vmax at its ends */
@@ -1236,7 +1237,7 @@ gf_status gf_probability_map(size_t n, const char *const *paths, double threshol
 gf_status gf_raster_contours(const char *geojson, const char *xy_path, const gf_raster *grid,
                              const double *values, size_t nlev, const double *levels)
 {
-    gdal_init();
+    gf_terrain_gdal_init();
     if (!grid || !values || nlev < 1 || !levels)
         return gf_fail(GF_EINVAL, "contours: no grid, values or levels");
     for (size_t k = 0; k < nlev; ++k)
