@@ -1,5 +1,6 @@
 /* Real terrain through GDAL/OGR: see granflow/terrain.h. */
 #include "granflow/terrain.h"
+#include "granflow/path_analysis.h"
 #include "granflow/constants.h"
 #include "internal.h"
 #include "terrain_internal.h"
@@ -1160,18 +1161,6 @@ done:
 
 /*------------------------------------------------------ probability maps --*/
 
-/* Same grid: size, origin and pixel size (to a millionth of a pixel) */
-static int same_grid(const gf_raster *a, const gf_raster *b)
-{
-    if (a->nx != b->nx || a->ny != b->ny)
-        return 0;
-    const double tol = 1e-6 * fabs(a->gt[1]);
-    for (int i = 0; i < 6; ++i)
-        if (fabs(a->gt[i] - b->gt[i]) > tol)
-            return 0;
-    return 1;
-}
-
 gf_status gf_probability_map(size_t n, const char *const *paths, double threshold, gf_raster *out)
 {
     if (!out)
@@ -1201,7 +1190,7 @@ gf_status gf_probability_map(size_t n, const char *const *paths, double threshol
                 st = gf_fail(GF_ENOMEM, "probability map: out of memory for %d x %d cells", r.nx, r.ny);
                 break;
             }
-        } else if (!same_grid(out, &r)) {
+        } else if (!gf_raster_same_grid(out, &r)) {
             st = gf_fail(GF_EDOM,
                          "probability map: raster %s (member %zu) is %d x %d cells, origin (%.10g, %.10g),"
                          " pixel %.10g; the first member %s is %d x %d, origin (%.10g, %.10g), pixel %.10g:"
