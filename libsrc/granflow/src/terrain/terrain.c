@@ -657,6 +657,31 @@ static OGRSpatialReferenceH geojson_srs(const char *wkt)
  * coordinates */
 static char *rfc7946[] = {"RFC7946=YES", NULL};
 
+/* The set-up GDAL's raster-to-vector algorithms share (gf_raster_outline,
+ * gf_raster_contours): values (of type t) on grid in an in-memory band, an
+ * in-memory layer of geometry type gtype for the algorithm to fill, and the
+ * grid's CRS for GeoJSON (NULL without one).  Messages start with
+ * "<what> <path>:".  Whatever was made is returned for the caller to close. */
+static gf_status band_and_layer(const char *what, const char *path, const gf_raster *grid, void *values,
+                                GDALDataType t, const char *layer, OGRwkbGeometryType gtype, GDALDatasetH *mem,
+                                GDALRasterBandH *band, GDALDatasetH *vmem, OGRLayerH *ml, OGRSpatialReferenceH *srs)
+{
+    *mem = mem_raster(grid, grid->nx, grid->ny, 1, t);
+    if (!*mem)
+        return gf_fail(GF_EIO, "%s %s: %s", what, path, gdal_msg());
+    *band = GDALGetRasterBand(*mem, 1);
+    if (GDALRasterIO(*band, GF_Write, 0, 0, grid->nx, grid->ny, values, grid->nx, grid->ny, t, 0, 0) != CE_None)
+        return gf_fail(GF_EIO, "%s %s: %s", what, path, gdal_msg());
+    if (grid->wkt && *grid->wkt)
+        *srs = geojson_srs(grid->wkt);
+    GDALDriverH vdrv = GDALGetDriverByName("Memory"), gj = GDALGetDriverByName("GeoJSON");
+    *vmem = vdrv ? GDALCreate(vdrv, "", 0, 0, 0, GDT_Unknown, NULL) : NULL;
+    if (!*vmem || !gj)
+        return gf_fail(GF_EIO, "%s %s: GDAL lacks the Memory or GeoJSON driver", what, path);
+    *ml = GDALDatasetCreateLayer(*vmem, layer, *srs, gtype, NULL);
+    return *ml ? GF_SUCCESS : gf_fail(GF_EIO, "%s %s: %s", what, path, gdal_msg());
+}
+
 gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
                             double threshold, double *area)
 {
@@ -672,28 +697,14 @@ gf_status gf_raster_outline(const char *path, const gf_raster *grid, const doubl
         count += (mask[i] = isfinite(values[i]) && values[i] >= threshold);
     if (area)
         *area = (double)count * grid->gt[1] * -grid->gt[5];
-    gf_status st = GF_SUCCESS;
-    GDALDatasetH mem = mem_raster(grid, grid->nx, grid->ny, 1, GDT_Byte), vmem = NULL, out = NULL;
+    GDALDatasetH mem = NULL, vmem = NULL, out = NULL;
+    GDALRasterBandH b = NULL;
+    OGRLayerH ml = NULL;
     OGRSpatialReferenceH srs = NULL;
-    if (!mem) {
-        st = gf_fail(GF_EIO, "outline %s: %s", path, gdal_msg());
+    GDALDriverH gj = GDALGetDriverByName("GeoJSON");
+    gf_status st = band_and_layer("outline", path, grid, mask, GDT_Byte, "mask", wkbPolygon, &mem, &b, &vmem, &ml, &srs);
+    if (st)
         goto done;
-    }
-    GDALRasterBandH b = GDALGetRasterBand(mem, 1);
-    if (GDALRasterIO(b, GF_Write, 0, 0, grid->nx, grid->ny, mask, grid->nx, grid->ny, GDT_Byte, 0, 0)
-        != CE_None) {
-        st = gf_fail(GF_EIO, "outline %s: %s", path, gdal_msg());
-        goto done;
-    }
-    if (grid->wkt && *grid->wkt)
-        srs = geojson_srs(grid->wkt);
-    GDALDriverH vdrv = GDALGetDriverByName("Memory"), gj = GDALGetDriverByName("GeoJSON");
-    vmem = vdrv ? GDALCreate(vdrv, "", 0, 0, 0, GDT_Unknown, NULL) : NULL;
-    if (!vmem || !gj) {
-        st = gf_fail(GF_EIO, "outline %s: GDAL lacks the Memory or GeoJSON driver", path);
-        goto done;
-    }
-    OGRLayerH ml = GDALDatasetCreateLayer(vmem, "mask", srs, wkbPolygon, NULL);
     OGRFieldDefnH fd = OGR_Fld_Create("value", OFTInteger);
     OGR_L_CreateField(ml, fd, TRUE);
     OGR_Fld_Destroy(fd);
@@ -1239,29 +1250,17 @@ gf_status gf_raster_contours(const char *geojson, const char *xy_path, const gf_
         return gf_fail(GF_ENOMEM, "contours: out of memory");
     for (size_t i = 0; i < np; ++i)
         v[i] = isnan(values[i]) ? nd : values[i];
-    gf_status st = GF_SUCCESS;
-    GDALDatasetH mem = mem_raster(grid, grid->nx, grid->ny, 1, GDT_Float64), vmem = NULL, out = NULL;
+    GDALDatasetH mem = NULL, vmem = NULL, out = NULL;
+    GDALRasterBandH b = NULL;
+    OGRLayerH ml = NULL;
     OGRSpatialReferenceH srs = NULL;
     FILE *xy = NULL;
     const char *what = geojson ? geojson : xy_path ? xy_path : "(none)";
-    if (!mem) {
-        st = gf_fail(GF_EIO, "contours %s: %s", what, gdal_msg());
+    GDALDriverH gj = GDALGetDriverByName("GeoJSON");
+    gf_status st = band_and_layer("contours", what, grid, v, GDT_Float64, "contours", wkbLineString, &mem, &b, &vmem,
+                                  &ml, &srs);
+    if (st)
         goto done;
-    }
-    GDALRasterBandH b = GDALGetRasterBand(mem, 1);
-    if (GDALRasterIO(b, GF_Write, 0, 0, grid->nx, grid->ny, v, grid->nx, grid->ny, GDT_Float64, 0, 0) != CE_None) {
-        st = gf_fail(GF_EIO, "contours %s: %s", what, gdal_msg());
-        goto done;
-    }
-    if (grid->wkt && *grid->wkt)
-        srs = geojson_srs(grid->wkt);
-    GDALDriverH vdrv = GDALGetDriverByName("Memory"), gj = GDALGetDriverByName("GeoJSON");
-    vmem = vdrv ? GDALCreate(vdrv, "", 0, 0, 0, GDT_Unknown, NULL) : NULL;
-    if (!vmem || !gj) {
-        st = gf_fail(GF_EIO, "contours %s: GDAL lacks the Memory or GeoJSON driver", what);
-        goto done;
-    }
-    OGRLayerH ml = GDALDatasetCreateLayer(vmem, "contours", srs, wkbLineString, NULL);
     OGRFieldDefnH fid = OGR_Fld_Create("id", OFTInteger), fl = OGR_Fld_Create("level", OFTReal);
     OGR_L_CreateField(ml, fid, TRUE);
     OGR_L_CreateField(ml, fl, TRUE);
