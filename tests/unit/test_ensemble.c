@@ -12,31 +12,8 @@
 #include <string.h>
 #include <unistd.h>
 
-static char tmpdir[64];
-
-static const char *tmp(const char *name)
-{
-    static char path[8][160];
-    static int k = 0;
-    k = (k + 1) % 8;
-    snprintf(path[k], sizeof path[k], "%s/%s", tmpdir, name);
-    return path[k];
-}
-
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/gf_ensemble_XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    return system(cmd);
-}
+#include "../gf_tmpdir.h"
+GF_TMPDIR_FIXTURES("gf_ensemble")
 
 /* Latin hypercube: for every input each stratum [k/n, (k+1)/n) holds exactly
  * one member; the same seed gives the same sample, another seed another */

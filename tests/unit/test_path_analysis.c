@@ -24,31 +24,8 @@
 #error "GF_SOURCE_DIR must point at the granflow checkout"
 #endif
 
-static char tmpdir[64];
-
-static const char *tmp(const char *name)
-{
-    static char path[4][160];
-    static int k = 0;
-    k = (k + 1) % 4;
-    snprintf(path[k], sizeof path[k], "%s/%s", tmpdir, name);
-    return path[k];
-}
-
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/gf_path_XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    return system(cmd);
-}
+#include "../gf_tmpdir.h"
+GF_TMPDIR_FIXTURES("gf_path")
 
 enum { NX = 151, NY = 61 };
 #define H 2.0

@@ -21,16 +21,8 @@
 #define HELIX GF_SOURCE_DIR "/tutorials/avaHelix/Inputs/DEM_HX_Topo.asc"
 #define HELIX_REL GF_SOURCE_DIR "/tutorials/avaHelix/Inputs/REL/release1HX.shp"
 
-static char tmpdir[64];
-
-static const char *tmp(const char *name)
-{
-    static char path[4][160];
-    static int k = 0;
-    k = (k + 1) % 4;
-    snprintf(path[k], sizeof path[k], "%s/%s", tmpdir, name);
-    return path[k];
-}
+#include "../gf_tmpdir.h"
+GF_TMPDIR_FIXTURES("gf_terrain")
 
 static void write_text(const char *path, const char *text)
 {
@@ -40,20 +32,6 @@ static void write_text(const char *path, const char *text)
     fclose(f);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/gf_terrain_XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    return system(cmd);
-}
 
 /* the avaHelix DEM as GDAL reports it: 1001 x 401 pixels of 5 m, lower-left
  * pixel centre (1000, -5000), no NODATA */
