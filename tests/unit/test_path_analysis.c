@@ -424,10 +424,33 @@ static void paths_and_points_are_read_through_ogr(void **state)
     expect_detail("nopath.shp", "no such file");
 }
 
+/* gf_path_locate: on an L-shaped path (0,0) -> (10,0) -> (10,10) a point
+ * left of the first leg, right of the second, beyond the end, and at the
+ * corner's outside */
+static void points_are_located_along_and_across_the_path(void **state)
+{
+    (void)state;
+    const double xy[6] = {0, 0, 10, 0, 10, 10};
+    double s, l;
+    gf_path_locate(3, xy, 4, 3, &s, &l);
+    assert_close(s, 4, 1e-12);
+    assert_close(l, 3, 1e-12); /* left of +x */
+    gf_path_locate(3, xy, 12, 6, &s, &l);
+    assert_close(s, 16, 1e-12);
+    assert_close(l, -2, 1e-12); /* right of +y */
+    gf_path_locate(3, xy, 10, 13, &s, &l);
+    assert_close(s, 20, 1e-12);
+    assert_close(l, 3, 1e-12); /* beyond the end: distance to the end point, on the left side */
+    gf_path_locate(3, xy, 13, -4, &s, &l);
+    assert_close(s, 10, 1e-12);
+    assert_close(l, -5, 1e-12); /* the corner, from outside (right of the first leg) */
+}
+
 int main(void)
 {
     CPLSetConfigOption("CPL_LOG", "/dev/null");
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(points_are_located_along_and_across_the_path),
         cmocka_unit_test(straight_path_on_a_plane_gives_the_exact_runout_and_angle),
         cmocka_unit_test(circular_arc_path_has_s_equal_r_theta),
         cmocka_unit_test(nodata_is_nan_and_not_reached),

@@ -148,6 +148,14 @@ void gf_path_compare_map(const gf_path_grid *g, const double *a, const double *r
  *  that is not a line, fewer than 2 points, a non-finite coordinate. */
 gf_status gf_path_read(const char *path, size_t *n, double **xy);
 
+/** Where a point (x, y) lies relative to a path of n >= 2 points (xy
+ *  interleaved): the foot of the perpendicular on the nearest segment gives
+ *  *s, the horizontal distance along the path from its first point to the
+ *  foot, and *l, the signed distance from the path, positive to the left of
+ *  the direction of travel (section 1's l).  Ties between segments go to the
+ *  first.  Used to decompose a terrain case along its path (gfDecompose). */
+void gf_path_locate(size_t n, const double *xy, double x, double y, double *s, double *l);
+
 /** Read a point: the first point of the first layer of a vector file
  *  (OGR).  Refused like gf_path_read, and for a geometry that is not a point. */
 gf_status gf_point_read(const char *path, double *x, double *y);

@@ -419,6 +419,29 @@ static OGRFeatureH first_feature(GDALDatasetH ds, const char *what, const char *
     return f;
 }
 
+void gf_path_locate(size_t n, const double *xy, double x, double y, double *s, double *l)
+{
+    double best = HUGE_VAL, s0 = 0.0;
+    *s = 0.0, *l = 0.0;
+    for (size_t i = 0; i + 1 < n; ++i) {
+        const double ax = xy[2 * i], ay = xy[2 * i + 1], dx = xy[2 * i + 2] - ax, dy = xy[2 * i + 3] - ay;
+        const double len2 = dx * dx + dy * dy, len = sqrt(len2);
+        if (len2 > 0.0) {
+            double t = ((x - ax) * dx + (y - ay) * dy) / len2;
+            t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+            const double px = ax + t * dx - x, py = ay + t * dy - y, d = sqrt(px * px + py * py);
+            if (d < best) {
+                best = d;
+                *s = s0 + t * len;
+                /* left of the direction (dx, dy): cross product > 0 */
+                const double cr = dx * (y - ay) - dy * (x - ax);
+                *l = cr >= 0.0 ? d : -d;
+            }
+        }
+        s0 += len;
+    }
+}
+
 gf_status gf_path_read(const char *path, size_t *n, double **xy)
 {
     if (!path || !n || !xy)
