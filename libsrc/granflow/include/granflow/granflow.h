@@ -15,8 +15,8 @@
 #include "granflow/sh1d.h"
 #include "granflow/surface.h"
 #include "granflow/ensemble.h"
+#include "granflow/version.h" /* GF_VERSION_STRING, gf_version() */
 /* test and benchmark helpers: granflow/verification.h */
 
-#define GRANFLOW_VERSION "0.1.0"
 
 #endif
