@@ -405,20 +405,6 @@ void gf_path_compare_map(const gf_path_grid *g, const double *a, const double *r
 
 /*------------------------------------------------------ vector input --*/
 
-/* the first feature's geometry of the first layer, NULL with *st set */
-static OGRFeatureH first_feature(GDALDatasetH ds, const char *what, const char *path, gf_status *st)
-{
-    OGRLayerH L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
-    OGRFeatureH f = NULL;
-    if (L) {
-        OGR_L_ResetReading(L);
-        f = OGR_L_GetNextFeature(L);
-    }
-    if (!f)
-        *st = gf_fail(GF_EDOM, "%s %s: no feature in its first layer", what, path);
-    return f;
-}
-
 void gf_path_locate(size_t n, const double *xy, double x, double y, double *s, double *l)
 {
     double best = HUGE_VAL, s0 = 0.0;
@@ -453,15 +439,11 @@ gf_status gf_path_read(const char *path, size_t *n, double **xy)
     if (!ds)
         return st;
     st = GF_SUCCESS;
-    OGRFeatureH f = first_feature(ds, "path", path, &st);
+    OGRFeatureH f = gf_terrain_first_feature(ds, "path", path, &st);
     if (!f)
         goto done;
-    OGRGeometryH g = OGR_F_GetGeometryRef(f);
-    OGRwkbGeometryType t = g ? wkbFlatten(OGR_G_GetGeometryType(g)) : wkbNone;
-    if (t == wkbMultiLineString && OGR_G_GetGeometryCount(g) == 1) {
-        g = OGR_G_GetGeometryRef(g, 0);
-        t = wkbFlatten(OGR_G_GetGeometryType(g));
-    }
+    OGRwkbGeometryType t;
+    OGRGeometryH g = gf_terrain_single_line(OGR_F_GetGeometryRef(f), &t);
     if (t != wkbLineString) {
         st = gf_fail(GF_EDOM, "path %s: feature %ld is a %s, not a line (the path is one line"
                               " string drawn from the release down through the runout)", path,
@@ -507,7 +489,7 @@ gf_status gf_point_read(const char *path, double *x, double *y)
     if (!ds)
         return st;
     st = GF_SUCCESS;
-    OGRFeatureH f = first_feature(ds, "point", path, &st);
+    OGRFeatureH f = gf_terrain_first_feature(ds, "point", path, &st);
     if (!f)
         goto done;
     OGRGeometryH g = OGR_F_GetGeometryRef(f);

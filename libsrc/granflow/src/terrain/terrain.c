@@ -682,6 +682,19 @@ static gf_status band_and_layer(const char *what, const char *path, const gf_ras
     return *ml ? GF_SUCCESS : gf_fail(GF_EIO, "%s %s: %s", what, path, gdal_msg());
 }
 
+/* Close what band_and_layer made and the output dataset (any may be NULL) */
+static void close_band_and_layer(GDALDatasetH out, GDALDatasetH vmem, GDALDatasetH mem, OGRSpatialReferenceH srs)
+{
+    if (out)
+        GDALClose(out);
+    if (vmem)
+        GDALClose(vmem);
+    if (mem)
+        GDALClose(mem);
+    if (srs)
+        OSRDestroySpatialReference(srs);
+}
+
 gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
                             double threshold, double *area)
 {
@@ -745,14 +758,7 @@ gf_status gf_raster_outline(const char *path, const gf_raster *grid, const doubl
         }
     }
 done:
-    if (out)
-        GDALClose(out);
-    if (vmem)
-        GDALClose(vmem);
-    if (mem)
-        GDALClose(mem);
-    if (srs)
-        OSRDestroySpatialReference(srs);
+    close_band_and_layer(out, vmem, mem, srs);
     free(mask);
     return st;
 }
@@ -819,6 +825,29 @@ void gf_dam_free(gf_dam *d)
     memset(d, 0, sizeof *d);
 }
 
+OGRFeatureH gf_terrain_first_feature(GDALDatasetH ds, const char *what, const char *path, gf_status *st)
+{
+    OGRLayerH L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
+    OGRFeatureH f = NULL;
+    if (L) {
+        OGR_L_ResetReading(L);
+        f = OGR_L_GetNextFeature(L);
+    }
+    if (!f)
+        *st = gf_fail(GF_EDOM, "%s %s: no feature in its first layer", what, path);
+    return f;
+}
+
+OGRGeometryH gf_terrain_single_line(OGRGeometryH g, OGRwkbGeometryType *t)
+{
+    *t = g ? wkbFlatten(OGR_G_GetGeometryType(g)) : wkbNone;
+    if (*t == wkbMultiLineString && OGR_G_GetGeometryCount(g) == 1) {
+        g = OGR_G_GetGeometryRef(g, 0);
+        *t = wkbFlatten(OGR_G_GetGeometryType(g));
+    }
+    return g;
+}
+
 static int slope_ok(double s) { return isfinite(s) && s > 0.0 && s < 90.0; }
 
 gf_status gf_dam_read(const char *path, const char *slope_attribute, double slope_default,
@@ -833,23 +862,13 @@ gf_status gf_dam_read(const char *path, const char *slope_attribute, double slop
     if (!ds)
         return opened;
     gf_status st = GF_SUCCESS;
-    OGRFeatureH f = NULL;
-    OGRLayerH L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
-    if (L) {
-        OGR_L_ResetReading(L);
-        f = OGR_L_GetNextFeature(L);
-    }
-    if (!f) {
-        st = gf_fail(GF_EDOM, "dam %s: no feature in its first layer", path);
+    OGRFeatureH f = gf_terrain_first_feature(ds, "dam", path, &st);
+    if (!f)
         goto done;
-    }
+    OGRLayerH L = GDALDatasetGetLayer(ds, 0);
     const long fid = (long)OGR_F_GetFID(f);
-    OGRGeometryH g = OGR_F_GetGeometryRef(f);
-    OGRwkbGeometryType t = g ? wkbFlatten(OGR_G_GetGeometryType(g)) : wkbNone;
-    if (t == wkbMultiLineString && OGR_G_GetGeometryCount(g) == 1) {
-        g = OGR_G_GetGeometryRef(g, 0);
-        t = wkbFlatten(OGR_G_GetGeometryType(g));
-    }
+    OGRwkbGeometryType t;
+    OGRGeometryH g = gf_terrain_single_line(OGR_F_GetGeometryRef(f), &t);
     if (t != wkbLineString) {
         st = gf_fail(GF_EDOM, "dam %s: feature %ld is a %s, not a line (the dam's crown is one"
                               " 3D line)", path, fid,
@@ -1319,14 +1338,7 @@ gf_status gf_raster_contours(const char *geojson, const char *xy_path, const gf_
 done:
     if (xy && fclose(xy) != 0 && !st)
         st = gf_fail(GF_EIO, "contours %s: writing failed", xy_path);
-    if (out)
-        GDALClose(out);
-    if (vmem)
-        GDALClose(vmem);
-    if (mem)
-        GDALClose(mem);
-    if (srs)
-        OSRDestroySpatialReference(srs);
+    close_band_and_layer(out, vmem, mem, srs);
     free(v);
     return st;
 }

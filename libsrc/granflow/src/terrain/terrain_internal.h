@@ -4,6 +4,7 @@
 #define GRANFLOW_TERRAIN_INTERNAL_H
 
 #include <gdal.h>
+#include <ogr_api.h>
 
 #include "granflow/status.h"
 
@@ -14,5 +15,15 @@ void gf_terrain_gdal_init(void);
  * message naming 'what' and the file) when it is missing or OGR cannot read
  * it. */
 GDALDatasetH gf_terrain_open_vector(const char *what, const char *path, gf_status *st);
+
+/* The first feature of the first layer of ds (OGR_F_Destroy it); NULL with
+ * *st set (GF_EDOM, "<what> <path>: no feature in its first layer") when
+ * there is none. */
+OGRFeatureH gf_terrain_first_feature(GDALDatasetH ds, const char *what, const char *path, gf_status *st);
+
+/* A line geometry as one line string: a multi line string of one part is
+ * taken as that part.  Returns the geometry and its flattened type in *t
+ * (wkbNone for no geometry); the caller checks *t == wkbLineString. */
+OGRGeometryH gf_terrain_single_line(OGRGeometryH g, OGRwkbGeometryType *t);
 
 #endif
