@@ -101,21 +101,28 @@ gf_status gf_friction_implicit_speed_laws(const gf_friction *f, const gf_frictio
                 x = 0.5 * hi;
         }
         for (int it = 0; it < 100; ++it) {
-            const double q = rs0 + c * x * x;
-            const double gx = h * x + dt * (t0 + A * (1.0 + rs0 / q) + cd * x * x) - M;
+            const double r = 1.0 / (rs0 + c * x * x), ar = A * rs0 * r; /* one division per iteration */
+            const double gx = h * x + dt * (t0 + A + ar + cd * x * x) - M;
             if (gx == 0.0)
                 break;
             if (gx < 0.0)
                 lo = x;
             else
                 hi = x;
-            const double dg = h + dt * (2.0 * cd * x - 2.0 * A * rs0 * c * x / (q * q));
+            const double dg = h + dt * (2.0 * cd * x - 2.0 * ar * c * x * r);
             double xn = dg > 0.0 ? x - gx / dg : -1.0;
-            if (!(xn > lo && xn < hi))
+            const int newton = xn > lo && xn < hi;
+            if (!newton)
                 xn = 0.5 * (lo + hi);
             const double step = fabs(xn - x);
             x = xn;
-            if (step <= 1e-15 * x || hi - lo <= 1e-15 * hi)
+            /* Newton converges quadratically: the error after a step d is
+             * about |g''| d^2 / (2 g'), and with g' >= h/2 (dt tau'' x is at
+             * most of the order of dt tau <= M = h s_max) a Newton step of at
+             * most 1e-8 x leaves an error of order 1e-16 x, the last bit: the
+             * next evaluation, which only confirmed it, is skipped.  A
+             * bisection step never ends the loop this way. */
+            if ((newton && dg >= 0.5 * h && step <= 1e-8 * x) || step <= 1e-15 * x || hi - lo <= 1e-15 * hi)
                 break;
         }
         *speed = x;
