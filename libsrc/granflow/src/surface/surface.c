@@ -12,6 +12,7 @@
 #include "surface_startup.h"
 
 #include <limits.h>
+#include <stdint.h>
 #include <stdlib.h>
 
 void gf_surface_config_default(gf_surface_config *c)
@@ -27,15 +28,20 @@ void gf_surface_config_default(gf_surface_config *c)
     gf_friction_init(&c->friction, "none");
 }
 
+static void free_lines(double *p); /* the blocks of calloc_lines */
+
 void gf_surface_free(gf_surface *s)
 {
     if (!s)
         return;
     gf_surface_startup_free(s);
     gf_surface_exchange_free(s);
-    void *bufs[] = {s->fe_start, s->fe,     s->frame,  s->geo,      s->h,    s->mom,    s->h1,     s->m1,
-                    s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->es, s->acc_h,  s->acc_m,
-                    s->acc_pn,   s->fh,     s->eacc, s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
+    free_lines(s->frame);
+    free_lines(s->es);
+    free_lines(s->eacc);
+    void *bufs[] = {s->fe_start, s->fe,     s->geo,      s->h,    s->mom,    s->h1,     s->m1,
+                    s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
+                    s->acc_pn,   s->fh,     s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f, s->act_b, s->neg, s->defer,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
                     s->fs_other, s->fs_nb, s->fs_geo, s->fs_es, s->pface, s->send_f};
@@ -149,14 +155,31 @@ static gf_status build_frames(gf_surface *s)
 }
 
 /* n doubles, zeroed, on 64-byte boundaries: an edge's 8-double block of
- * gf_surface.es is then one cache line, not two */
+ * gf_surface.es is then one cache line, not two.  From calloc, not
+ * aligned_alloc and memset: calloc takes large blocks as fresh zero pages
+ * from the system, which become resident only where they are first
+ * written, so the per-edge scratch blocks (es, eacc) cost memory only along
+ * the avalanche's path, and the set-up does not write them all; the block
+ * starts after a pointer to calloc's own (free_lines). */
 static double *calloc_lines(size_t n)
 {
     const size_t bytes = (n * sizeof(double) + 63) / 64 * 64;
-    double *p = aligned_alloc(64, bytes);
-    if (p)
-        memset(p, 0, bytes);
-    return p;
+    char *raw = calloc(1, bytes + 64 + sizeof(void *));
+    if (!raw)
+        return NULL;
+    char *p = raw + sizeof(void *);
+    p += (64 - (uintptr_t)p % 64) % 64;
+    memcpy(p - sizeof(void *), &raw, sizeof raw);
+    return (double *)(void *)p;
+}
+
+static void free_lines(double *p)
+{
+    if (!p)
+        return;
+    void *raw;
+    memcpy(&raw, (char *)p - sizeof(void *), sizeof raw);
+    free(raw);
 }
 
 gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config *cfg, gf_surface **out)
