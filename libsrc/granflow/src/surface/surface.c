@@ -44,7 +44,7 @@ void gf_surface_free(gf_surface *s)
                     s->acc_pn,   s->fh,     s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f, s->act_b, s->neg, s->defer,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
-                    s->fs_other, s->fs_nb, s->fs_geo, s->fs_es, s->pface, s->send_f};
+                    s->fs_other, s->fs_nb, s->fs_geo, s->fs_es, s->pface, s->send_f, s->geo_edge, s->geo_face};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
         free(bufs[i]);
     free(s);
@@ -108,50 +108,78 @@ static gf_status check_mesh(const gf_surface_mesh *m)
 }
 
 /* Edge frame: n_e = (n_o + n_n)/|.|, nu orthogonalised against n_e, t = n_e x nu;
- * nu_L = t x n_o lies in the owner's plane (the rotation of nu about t). */
-static gf_status build_frames(gf_surface *s)
+ * nu_L = t x n_o lies in the owner's plane (the rotation of nu about t).
+ * Edge e's frame block (EF doubles) into fr and its vectors (EG) into ge. */
+static gf_status edge_geometry(const gf_surface_mesh *m, size_t e, double *fr, double *ge)
 {
-    const gf_surface_mesh *m = &s->m;
-    for (size_t e = 0; e < m->n_edges; ++e) {
-        double *fr = s->frame + EF * e, *ge = s->geo + EG * e, ne[3];
-        const double *no = m->normal + 3 * m->owner[e];
-        const double *nn = m->neighbour[e] >= 0 ? m->normal + 3 * m->neighbour[e] : no;
-        for (int k = 0; k < 3; ++k)
-            ne[k] = no[k] + nn[k];
-        double *nu = fr + EF_NU, *t = fr + EF_T, *nul = fr + EF_NUL, *nur = fr + EF_NUR;
-        memcpy(nu, m->edge_normal + 3 * e, 3 * sizeof *nu);
-        if (normalise3(ne))
-            return gf_fail(GF_EDOM, "surface mesh: faces across edge %zu have opposite normals", e);
-        const double d = dot3(nu, ne);
-        for (int k = 0; k < 3; ++k)
-            nu[k] -= d * ne[k];
-        if (normalise3(nu))
-            return gf_fail(GF_EDOM, "surface mesh: edge normal of edge %zu is zero or normal to the surface", e);
-        cross3(ne, nu, t);
-        cross3(t, no, nul);
-        cross3(t, nn, nur);
-        if (normalise3(t) || normalise3(nul) || normalise3(nur))
-            return gf_fail(GF_EDOM, "surface mesh: degenerate frame at edge %zu", e);
-        const double L = m->length[e], *xe = m->edge_centre + 3 * e, *xo = m->centre + 3 * m->owner[e];
-        const double *xn = m->neighbour[e] >= 0 ? m->centre + 3 * m->neighbour[e] : xo;
-        for (int k = 0; k < 3; ++k) {
-            ge[EG_LW + k] = L * m->edge_normal[3 * e + k];
-            ge[EG_RO + k] = xe[k] - xo[k];
-            ge[EG_RN + k] = xe[k] - xn[k];
-        }
-        fr[EF_L] = L;
-        fr[EF_PO] = L * dot3(nu, no);
-        fr[EF_PN] = L * dot3(nu, nn);
+    double ne[3];
+    const double *no = m->normal + 3 * m->owner[e];
+    const double *nn = m->neighbour[e] >= 0 ? m->normal + 3 * m->neighbour[e] : no;
+    for (int k = 0; k < 3; ++k)
+        ne[k] = no[k] + nn[k];
+    double *nu = fr + EF_NU, *t = fr + EF_T, *nul = fr + EF_NUL, *nur = fr + EF_NUR;
+    memcpy(nu, m->edge_normal + 3 * e, 3 * sizeof *nu);
+    if (normalise3(ne))
+        return gf_fail(GF_EDOM, "surface mesh: faces across edge %zu have opposite normals", e);
+    const double d = dot3(nu, ne);
+    for (int k = 0; k < 3; ++k)
+        nu[k] -= d * ne[k];
+    if (normalise3(nu))
+        return gf_fail(GF_EDOM, "surface mesh: edge normal of edge %zu is zero or normal to the surface", e);
+    cross3(ne, nu, t);
+    cross3(t, no, nul);
+    cross3(t, nn, nur);
+    if (normalise3(t) || normalise3(nul) || normalise3(nur))
+        return gf_fail(GF_EDOM, "surface mesh: degenerate frame at edge %zu", e);
+    const double L = m->length[e], *xe = m->edge_centre + 3 * e, *xo = m->centre + 3 * m->owner[e];
+    const double *xn = m->neighbour[e] >= 0 ? m->centre + 3 * m->neighbour[e] : xo;
+    for (int k = 0; k < 3; ++k) {
+        ge[EG_LW + k] = L * m->edge_normal[3 * e + k];
+        ge[EG_RO + k] = xe[k] - xo[k];
+        ge[EG_RN + k] = xe[k] - xn[k];
     }
-    for (size_t j = 0; j < s->fe_start[s->nt]; ++j) {
-        const double *ge = s->geo + EG * s->fe[j], w = s->fs_nb[j] ? -1.0 : 1.0;
-        double *sg = s->fs_geo + SG * j;
-        for (int k = 0; k < 3; ++k) {
-            sg[k] = w * ge[EG_LW + k];
-            sg[3 + k] = ge[(s->fs_nb[j] ? EG_RN : EG_RO) + k];
-        }
-    }
+    fr[EF_L] = L;
+    fr[EF_PO] = L * dot3(nu, no);
+    fr[EF_PN] = L * dot3(nu, nn);
     return GF_SUCCESS;
+}
+
+/* Every edge's frame checked at the set-up (a degenerate mesh is refused
+ * there, not in a step), into scratch: the per-edge and per-slot geometry
+ * itself is written when a face first joins the active set
+ * (gf_surface_geometry), so a run writes, and keeps resident, only the
+ * geometry of the terrain its avalanche reaches. */
+static gf_status check_frames(const gf_surface *s)
+{
+    double fr[EF], ge[EG];
+    gf_status st;
+    for (size_t e = 0; e < s->m.n_edges; ++e)
+        if ((st = edge_geometry(&s->m, e, fr, ge)))
+            return st;
+    return GF_SUCCESS;
+}
+
+void gf_surface_geometry(gf_surface *s, const int *faces, size_t n)
+{
+    for (size_t i = 0; i < n; ++i) {
+        const int f = faces[i];
+        if (s->geo_face[f])
+            continue;
+        for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j];
+            const double *ge = s->geo + EG * e, w = s->fs_nb[j] ? -1.0 : 1.0;
+            if (!s->geo_edge[e]) {
+                (void)edge_geometry(&s->m, (size_t)e, s->frame + EF * e, s->geo + EG * e); /* checked at the set-up */
+                s->geo_edge[e] = 1;
+            }
+            double *sg = s->fs_geo + SG * j;
+            for (int k = 0; k < 3; ++k) {
+                sg[k] = w * ge[EG_LW + k];
+                sg[3 + k] = ge[(s->fs_nb[j] ? EG_RN : EG_RO) + k];
+            }
+        }
+        s->geo_face[f] = 1;
+    }
 }
 
 /* n doubles, zeroed, on 64-byte boundaries: an edge's 8-double block of
@@ -206,7 +234,9 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->fe_start = calloc(nt + 1, sizeof *s->fe_start);
     s->fe = malloc((2 * ne + 1) * sizeof *s->fe);
     s->frame = calloc_lines(EF * ne + 1);
-    s->geo = malloc((EG * ne + 1) * sizeof *s->geo);
+    s->geo = calloc(EG * ne + 1, sizeof *s->geo);
+    s->geo_edge = calloc(ne + 1, 1);
+    s->geo_face = calloc(nt + 1, 1);
     double **d3[] = {&s->mom, &s->m1, &s->m2, &s->u};
     for (int i = 0; i < 4; ++i)
         *d3[i] = calloc(3 * nt, sizeof(double));
@@ -243,7 +273,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->prev_f = malloc(nt * sizeof *s->prev_f);
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
-    if (!s->fe_start || !s->fe || !s->frame || !s->geo || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
+    if (!s->fe_start || !s->fe || !s->frame || !s->geo || !s->geo_edge || !s->geo_face || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
         !s->a || !s->pb || !s->grad || !s->es || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->eacc || !s->efmn || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->act_b || !s->neg || !s->defer || !s->prev_f || !s->a_save || !s->lvl) {
@@ -281,7 +311,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     const size_t ns = s->fe_start[nt];
     s->fs_other = malloc((ns + 1) * sizeof *s->fs_other);
     s->fs_nb = malloc(ns + 1);
-    s->fs_geo = malloc((SG * ns + 1) * sizeof *s->fs_geo);
+    s->fs_geo = calloc(SG * ns + 1, sizeof *s->fs_geo);
     s->pface = calloc(nf + 1, 1);
     s->fs_es = malloc((ns + 1) * sizeof *s->fs_es);
     if (!s->fs_other || !s->fs_nb || !s->fs_geo || !s->pface || !s->fs_es) {
@@ -301,7 +331,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
         const double gn = -dot3(cfg->g, mesh->normal + 3 * f);
         s->a[f] = s->ahyd[f] = gn > 0.0 ? gn : 0.0;
     }
-    if ((st = build_frames(s))) {
+    if ((st = check_frames(s))) {
         gf_surface_free(s);
         return st;
     }

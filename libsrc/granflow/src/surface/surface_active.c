@@ -150,6 +150,8 @@ gf_status gf_surface_build_active(gf_surface *s)
             }
         }
     }
+    /* the geometry the passes read: of the active faces and their edges */
+    gf_surface_geometry(s, s->act_f, s->n_act_f);
     s->n_act_b = 0;
     for (size_t i = 0; i < s->n_act_e; ++i)
         if (s->m.neighbour[s->act_e[i]] < 0)

@@ -44,7 +44,8 @@ struct gf_surface_mx {
 };
 
 #define NV 4 /* reconstructed variables: h, u_x, u_y, u_z */
-/* Per-edge geometry, built once by build_frames, in two blocks so that each
+/* Per-edge geometry, written once (gf_surface_geometry, when a face of the
+ * edge first joins the active set), in two blocks so that each
  * pass reads only what it needs (a face's edges are not adjacent in memory;
  * on meshes larger than the cache the passes are bound by these reads):
  *  - gf_surface.frame, EF doubles per edge on two cache lines (edge fluxes,
@@ -126,6 +127,9 @@ struct gf_surface {
     /* per-edge geometry: frame nu, t, nu_L (owner plane), nu_R (neighbour
      * plane) (EF per edge), and the kernels' precomputed vectors (EG) */
     double *frame, *geo;
+    /* written when a face first joins the active set (gf_surface_geometry):
+     * per edge, its frame and geo blocks; per face, its slots' fs_geo */
+    unsigned char *geo_edge, *geo_face;
     /* state and stage buffers (nt, 3 nt) */
     double *h, *mom, *h1, *m1, *h2, *m2;
     double *a;    /* normal acceleration p_b/(rho h) per face (nt) */
@@ -217,6 +221,9 @@ gf_status gf_surface_load_state(gf_surface *s, const double *h, const double *mo
 /* A step on this mesh, repeated as two half steps where a stage would make a
  * thickness negative even at first order (surface.c) */
 gf_status gf_surface_step_split(gf_surface *s, double dt, int depth);
+/* The geometry of faces[0..n) and of their edges, unless written before
+ * (surface.c; the active set's, gf_surface_build_active) */
+void gf_surface_geometry(gf_surface *s, const int *faces, size_t n);
 #pragma GCC visibility pop
 
 #endif
