@@ -9,6 +9,8 @@
 
 #include "granflow/friction.h"
 #include "granflow/constants.h"
+/* the explicit scheme's four-lane samosAT solver (internal) */
+#include "../../libsrc/granflow/src/physics/friction_implicit.h"
 
 
 /* h = 0.5 m, |u| = 2 m/s, rho = 1500, p_b = rho g cos(35 deg) h */
@@ -358,6 +360,52 @@ static void samosat_limits(void **state)
     assert_int_equal(gf_friction_set(&g, "B", 0.0), GF_EDOM);
 }
 
+/* The four-lane samosAT solver of the explicit scheme gives each lane the
+ * scalar solver's speed bit for bit, over the regimes of
+ * implicit_speed_solves_backward_euler (thin and thick, yield stress,
+ * lift-off, held at rest) with the lanes' states mixed, so that lanes leave
+ * the Newton loop at different iterations */
+static void samosat_four_lanes_equal_scalar(void **state)
+{
+    (void)state;
+    const double g = 9.81, rho = 200.0;
+    gf_friction f;
+    assert_int_equal(gf_friction_init(&f, "samosAT"), GF_SUCCESS);
+    assert_int_equal(gf_friction_set(&f, "u0", 0.0), GF_SUCCESS);
+    assert_true(gf_friction_samosat4(&f));
+    const double hs[] = {0.01, 0.04, 0.3, 1.7, 4.0}, tau0s[] = {0.0, 150.0}, pbf[] = {0.9, 0.0, 0.35};
+    const double dts[] = {1e-3, 0.05, 0.3, 1.5};
+    unsigned seed = 12345;
+    size_t n = 0, moving = 0, iters = 0;
+    for (size_t b = 0; b < 2; ++b) {
+        assert_int_equal(gf_friction_set(&f, "tau0", tau0s[b]), GF_SUCCESS);
+        for (size_t d = 0; d < 4; ++d)
+            for (int rep = 0; rep < 400; ++rep) {
+                double h[4], pb[4], M[4], s4[4];
+                for (int k = 0; k < 4; ++k) {
+                    seed = seed * 1103515245u + 12345u;
+                    h[k] = hs[(seed >> 8) % 5];
+                    pb[k] = rho * g * h[k] * pbf[(seed >> 12) % 3];
+                    M[k] = h[k] * 1e-4 * pow(10.0, 6.0 * ((seed >> 16) % 1000) / 1000.0); /* speeds 1e-4 .. 100 */
+                }
+                gf_friction_implicit_speed_samosat4(&f, h, pb, rho, M, dts[d], s4);
+                for (int k = 0; k < 4; ++k) {
+                    const gf_friction_state st = {h[k], 0.0, pb[k], rho, g};
+                    double s1;
+                    assert_int_equal(gf_friction_implicit_speed(&f, &st, M[k], dts[d], &s1), GF_SUCCESS);
+                    if (memcmp(&s1, &s4[k], sizeof s1) != 0)
+                        fail_msg("lane %d: h %g pb %g M %g dt %g: scalar %.17g, four lanes %.17g", k, h[k], pb[k],
+                                 M[k], dts[d], s1, s4[k]);
+                    moving += s1 > 0.0;
+                    ++n;
+                }
+                ++iters;
+            }
+    }
+    /* both branches exercised: faces held at rest and moving ones */
+    assert_true(n == 4 * iters && moving > n / 4 && moving < n);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -369,6 +417,7 @@ int main(void)
         cmocka_unit_test(static_bound_is_the_coulomb_limit),
         cmocka_unit_test(implicit_speed_solves_backward_euler),
         cmocka_unit_test(samosat_limits),
+        cmocka_unit_test(samosat_four_lanes_equal_scalar),
         cmocka_unit_test(unknown_law_lists_valid_names),
         cmocka_unit_test(bad_coefficients_name_key_and_range),
         cmocka_unit_test(bad_state_is_an_error_not_nan),

@@ -13,6 +13,18 @@ gf_status gf_friction_implicit_speed_fail(const gf_friction_state *s, double M, 
 gf_status gf_friction_implicit_speed_laws(const gf_friction *f, const gf_friction_state *s, double M, double dt,
                                           double *speed);
 
+/* samosAT with u0 = 0, whose speeds gf_friction_implicit_speed_samosat4
+ * gives four at a time */
+static inline int gf_friction_samosat4(const gf_friction *f)
+{
+    return f->type == gf_friction_samosat && f->p[6] == 0.0;
+}
+/* The speeds of four states at once (h[k], pb[k], M[k]; rho, g and dt
+ * common; arguments checked, gf_friction_samosat4(f)): each lane the value
+ * gf_friction_implicit_speed_laws gives for it, bit for bit */
+void gf_friction_implicit_speed_samosat4(const gf_friction *f, const double h[4], const double pb[4], double rho,
+                                         const double M[4], double dt, double speed[4]);
+
 /* mu p_b / rho of the Coulomb law (0 without contact) */
 static inline double gf_friction_coulomb_mp(const gf_friction *f, const gf_friction_state *s)
 {

@@ -12,13 +12,19 @@
 #include "granflow/friction.h"
 #include "friction_implicit.h"
 
+/* the arguments' ranges: one test on the hot path, the named check
+ * (gf_friction_implicit_speed_fail) only on failure */
+static inline int gf_friction_implicit_args_ok(const gf_friction_state *s, double M, double dt)
+{
+    return s->h >= 1e-300 && s->h < HUGE_VAL && M >= 0.0 && M < HUGE_VAL && dt >= 0.0 && dt < HUGE_VAL &&
+           s->rho >= 1e-300 && s->rho < HUGE_VAL && s->g >= 0.0 && s->g < HUGE_VAL && isfinite(s->pb);
+}
+
 /* f and s not NULL, f initialised */
 static inline gf_status gf_friction_implicit_speed_inline(const gf_friction *f, const gf_friction_state *s, double M,
                                                           double dt, double *speed)
 {
-    /* the arguments' ranges: one test on the hot path, the named check only on failure */
-    if (!(s->h >= 1e-300 && s->h < HUGE_VAL && M >= 0.0 && M < HUGE_VAL && dt >= 0.0 && dt < HUGE_VAL &&
-          s->rho >= 1e-300 && s->rho < HUGE_VAL && s->g >= 0.0 && s->g < HUGE_VAL && isfinite(s->pb)))
+    if (!gf_friction_implicit_args_ok(s, M, dt))
         return gf_friction_implicit_speed_fail(s, M, dt);
     /* Coulomb, u0 = 0: h s + dt mu p sign(s) = M, s = max(0, M - dt mu p) / h (stops exactly) */
     if (f->type == gf_friction_coulomb && f->p[1] == 0.0) {

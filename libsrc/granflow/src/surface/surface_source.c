@@ -5,6 +5,34 @@
 #include "surface_source.h"
 #include "friction_speed.h"
 
+/* samosAT's speeds (u0 = 0) wait in a queue of four faces and are taken
+ * four at a time (gf_friction_implicit_speed_samosat4, each lane the scalar
+ * result bit for bit): the per-face Newton iterations, the largest part of
+ * a terrain step with samosAT, then share their divisions */
+struct fq {
+    int n, f[4];
+    double h[4], pb[4], M[4], ms[4][3];
+};
+
+static void flush_queue(gf_surface *s, struct fq *q, double dt, double *Mo)
+{
+    if (q->n == 0)
+        return;
+    for (int k = q->n; k < 4; ++k) /* padding lanes: the first one's state, results unused */
+        q->h[k] = q->h[0], q->pb[k] = q->pb[0], q->M[k] = q->M[0];
+    double speed[4];
+    gf_friction_implicit_speed_samosat4(&s->c.friction, q->h, q->pb, s->c.rho, q->M, dt, speed);
+    for (int k = 0; k < q->n; ++k) {
+        const double r = q->h[k] * speed[k] / q->M[k];
+        if (speed[k] == 0.0)
+            s->st.stopped_faces++;
+        double *mo = Mo + 3 * q->f[k];
+        for (int j = 0; j < 3; ++j)
+            mo[j] = q->ms[k][j] * r;
+    }
+    q->n = 0;
+}
+
 gf_status gf_surface_update_faces(gf_surface *s, double dt, const double *H, const double *M, double *Ho,
                                   double *Mo)
 {
@@ -12,6 +40,8 @@ gf_status gf_surface_update_faces(gf_surface *s, double dt, const double *H, con
     const gf_surface_config *c = &s->c;
     gf_status st;
     const double gm = s->gmag;
+    const int lanes = gf_friction_samosat4(&c->friction);
+    struct fq q = {0};
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
         const double rA = 1.0 / m->area[f], h = H[f], *nf = m->normal + 3 * f;
@@ -46,8 +76,17 @@ gf_status gf_surface_update_faces(gf_surface *s, double dt, const double *H, con
         if (hn > c->h_dry) {
             const double Mag = sqrt(dot3(ms, ms));
             double speed = 0.0;
+            s->a[f] = h > c->h_dry ? pbr / h : gmax(0.0, gn);
             if (Mag > 0.0) {
                 const gf_friction_state fs = {hn, 0.0, c->rho * pbr, c->rho, gm};
+                if (lanes && gf_friction_implicit_args_ok(&fs, Mag, dt)) {
+                    const int k = q.n++;
+                    q.f[k] = f, q.h[k] = hn, q.pb[k] = fs.pb, q.M[k] = Mag;
+                    memcpy(q.ms[k], ms, sizeof ms);
+                    if (q.n == 4)
+                        flush_queue(s, &q, dt, Mo);
+                    continue;
+                }
                 if ((st = gf_friction_implicit_speed_inline(&c->friction, &fs, Mag, dt, &speed)))
                     return st;
             }
@@ -56,11 +95,11 @@ gf_status gf_surface_update_faces(gf_surface *s, double dt, const double *H, con
                 s->st.stopped_faces++;
             for (int k = 0; k < 3; ++k)
                 mo[k] = ms[k] * r;
-            s->a[f] = h > c->h_dry ? pbr / h : gmax(0.0, gn);
         } else {
             mo[0] = mo[1] = mo[2] = 0.0;
             s->a[f] = gmax(0.0, gn);
         }
     }
+    flush_queue(s, &q, dt, Mo);
     return GF_SUCCESS;
 }
