@@ -36,8 +36,8 @@ Description
     runs); the log reports the stop time and which end condition applied.
     With controlDict hazardMaps yes (and peakFields yes) a terrain run ends
     with its hazard maps, the files gfHazardMaps would write afterwards
-    (hazardMaps.H), without loading the meshes again; a parallel run skips
-    them with a message.
+    (hazardMaps.H, opened through hazardMapsWriter.H), without loading the
+    meshes again; a parallel run skips them with a message.
 
 Usage
     faGranularFlowFoam [-parallel] [-keywords] [-version]
@@ -60,7 +60,7 @@ Usage
 #include "peakFields.H"
 #include "cpuSections.H"
 #include "runProfile.H"
-#include "hazardMaps.H"
+#include "hazardMapsWriter.H"
 
 #include "keyword.H"
 #include "keepFreedMemory.H"
@@ -97,9 +97,9 @@ int main(int argc, char *argv[])
     granflow::peakFields peaks(mesh, aMesh);   // controlDict peakFields yes (peakFields.H)
     peaks.update(h, Us);
     profile.mark("fields");
-    // the hazard maps at the end (controlDict hazardMaps yes; hazardMaps.H):
+    // the hazard maps at the end (controlDict hazardMaps yes; hazardMapsWriter.H):
     // the terrain and its DEM read now, so that a bad case stops before the run
-    const autoPtr<granflow::hazardMaps> maps(granflow::hazardMaps::New(mesh, aMesh, peaks.on()));
+    const autoPtr<granflow::hazardMapsWriter> maps(granflow::hazardMapsAtEnd(mesh, aMesh, peaks.on()));
     if (maps.valid()) profile.mark("hazard maps set-up (terrain)");
     if (explicitScheme)
     {
