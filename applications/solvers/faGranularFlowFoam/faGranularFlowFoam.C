@@ -34,6 +34,10 @@ Description
     stopped (controlDict stopCriterion kineticEnergy: the total kinetic
     energy below stopFraction, 1 %, of its running peak, as AvaFrame ends its
     runs); the log reports the stop time and which end condition applied.
+    With controlDict hazardMaps yes (and peakFields yes) a terrain run ends
+    with its hazard maps, the files gfHazardMaps would write afterwards
+    (hazardMaps.H, opened through hazardMapsWriter.H), without loading the
+    meshes again; a parallel run skips them with a message.
 
 Usage
     faGranularFlowFoam [-parallel] [-keywords] [-version]
@@ -56,6 +60,7 @@ Usage
 #include "peakFields.H"
 #include "cpuSections.H"
 #include "runProfile.H"
+#include "hazardMapsWriter.H"
 
 #include "keyword.H"
 #include "keepFreedMemory.H"
@@ -92,6 +97,10 @@ int main(int argc, char *argv[])
     granflow::peakFields peaks(mesh, aMesh);   // controlDict peakFields yes (peakFields.H)
     peaks.update(h, Us);
     profile.mark("fields");
+    // the hazard maps at the end (controlDict hazardMaps yes; hazardMapsWriter.H):
+    // the terrain and its DEM read now, so that a bad case stops before the run
+    const autoPtr<granflow::hazardMapsWriter> maps(granflow::hazardMapsAtEnd(mesh, aMesh, peaks.on()));
+    if (maps.valid()) profile.mark("hazard maps set-up (terrain)");
     if (explicitScheme)
     {
         #include "explicitLoop.H"
@@ -109,6 +118,27 @@ int main(int argc, char *argv[])
         granflow::readMassExchange(granularProperties, "implicit");
         #include "implicitLoop.H"
         profile.mark("time loop");
+    }
+    if (maps.valid())
+    {
+        // after the last time and its mass balance are written: the maps of
+        // the latest written time, as gfHazardMaps makes them afterwards
+        peaks.flush();
+        const instantList times = runTime.times();
+        if (times.last().name() != runTime.timeName())
+        {
+            Info<< "hazardMaps: the run ended at t = " << runTime.timeName() << " s, which is not"
+                << " written; the maps are those of the latest written time " << times.last().name()
+                << " s" << nl;
+        }
+        Info<< nl << "Hazard maps of time " << times.last().name() << " s:" << nl;
+        maps->write(times.last());
+        Info<< endl;
+        profile.mark("hazard maps");
+    }
+    else if (Pstream::parRun() && granflow::keyword::read<bool>(runTime.controlDict(), granflow::keyword::get("controlDict"), "hazardMaps"))
+    {
+        Info<< "hazardMaps yes: skipped in this parallel run: reconstructPar, then gfHazardMaps" << nl;
     }
     profile.report(Info);
     Info<< "End" << nl << endl;

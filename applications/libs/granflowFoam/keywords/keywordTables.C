@@ -360,6 +360,14 @@ std::vector<table> makeTables()
             {"peakFields", "switch", "no", "", "", "",
              "write hPeak and speedPeak with every time and the centre of mass"
              " (postProcessing/centreOfMass) for gfHazardMaps"},
+            {"hazardMaps", "switch", "no", "", "", "",
+             "write the hazard maps (postProcessing/hazardMaps: the rasters, outline, maps, mass.csv and"
+             " summary.dat of gfHazardMaps, the same files) at the end of the run, after its last time is"
+             " written, with the meshes already loaded; needs peakFields yes and a terrain case"
+             " (constant/terrainProperties); a parallel run skips them with a message (reconstructPar,"
+             " then gfHazardMaps)"},
+            {"hazardMapsThreshold", "scalar", "0.1", "> 0", "m", "",
+             "hazardMaps: hPeak of the affected-area outline and area (gfHazardMaps -threshold)"},
             {"stopCriterion", "word", "none", "none | kineticEnergy", "", "explicit",
              "end condition besides endTime (the cap): kineticEnergy ends the run, writing that time,"
              " once the total kinetic energy 1/2 rho sum A h |Us|^2 falls below stopFraction of its"
