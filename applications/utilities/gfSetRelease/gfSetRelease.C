@@ -517,6 +517,24 @@ int main(int argc, char *argv[])
         }
     };
 
+    // the release velocity of the dictionary's Us (optional): its tangential part
+    autoPtr<areaVectorField> UsPtr;
+    vector u0 = Zero;
+    if (kw::readIfPresent<vector>(dict, rt, "Us", u0))
+    {
+        UsPtr.reset
+        (
+            new areaVectorField
+            (
+                IOobject("Us", runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE),
+                aMesh
+            )
+        );
+        const vector u = u0;
+        UsPtr->primitiveFieldRef() = u - N*(N & u);   // tangential part
+        UsPtr->correctBoundaryConditions();
+    }
+
     if (samples.empty())
     {
         const scalarField hNew(compute(ci95On, ci95Sample));
@@ -524,19 +542,9 @@ int main(int argc, char *argv[])
         field.correctBoundaryConditions();
         field.write();
         report(hNew);
-
-        vector u0 = Zero;
-        if (kw::readIfPresent<vector>(dict, rt, "Us", u0))
+        if (UsPtr.valid())
         {
-            areaVectorField Us
-            (
-                IOobject("Us", runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE),
-                aMesh
-            );
-            const vector u = u0;
-            Us.primitiveFieldRef() = u - N*(N & u);   // tangential part
-            Us.correctBoundaryConditions();
-            Us.write();
+            UsPtr->write();
             Info<< "Wrote Us" << endl;
         }
         Info<< "End" << endl;
@@ -560,22 +568,6 @@ int main(int argc, char *argv[])
             FatalErrorInFunction << "Cannot write " << file << exit(FatalError);
         }
     };
-    autoPtr<areaVectorField> UsPtr;
-    vector u0 = Zero;
-    if (kw::readIfPresent<vector>(dict, rt, "Us", u0))
-    {
-        UsPtr.reset
-        (
-            new areaVectorField
-            (
-                IOobject("Us", runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE),
-                aMesh
-            )
-        );
-        const vector u = u0;
-        UsPtr->primitiveFieldRef() = u - N*(N & u);   // tangential part
-        UsPtr->correctBoundaryConditions();
-    }
     const bool throwing = FatalError.throwExceptions(), ioThrowing = FatalIOError.throwExceptions();
     label nWritten = 0;
     DynamicList<word> refused;
