@@ -6,6 +6,7 @@
 #include "granflow/friction.h"
 #include "internal.h"
 #include "friction_implicit.h"
+#include "simd4.h"
 
 #include <math.h>
 
@@ -175,60 +176,53 @@ gf_status gf_friction_implicit_speed_laws(const gf_friction *f, const gf_frictio
  * (test_friction checks it).  Every lane's operations are kept finite
  * (guarded divisor and square-root argument): OpenFOAM traps floating-point
  * exceptions. */
-#pragma GCC diagnostic ignored "-Wpsabi" /* static helpers only: no 32-byte vectors cross an ABI */
-typedef double fv4 __attribute__((vector_size(32)));
-typedef long long fm4 __attribute__((vector_size(32)));
-static inline fv4 fsel(fm4 m, fv4 a, fv4 b) { return (fv4)(((fm4)a & m) | ((fm4)b & ~m)); }
-static inline fv4 fsplat(double x) { return (fv4){x, x, x, x}; }
-static inline int fany(fm4 m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
-
 void gf_friction_implicit_speed_samosat4(const gf_friction *f, const double h[4], const double pb[4], double rho,
                                          const double M[4], double dt, double speed[4])
 {
     const double rs0 = f->p[2];
-    const fv4 zero = fsplat(0.0), one = fsplat(1.0), vdt = fsplat(dt), vrho = fsplat(rho), vrs0 = fsplat(rs0);
-    const fv4 H = {h[0], h[1], h[2], h[3]}, PB = {pb[0], pb[1], pb[2], pb[3]}, MM = {M[0], M[1], M[2], M[3]};
-    const fv4 sig = fsel(PB > zero, PB, zero);
-    const fv4 A = fsplat(f->p[0]) * sig / vrho, t0 = fsel(sig > zero, fsplat(f->p[1] / rho), zero);
-    const fv4 c = vrho / (sig + fsplat(0.001));
-    fv4 lr;
+    const v4d zero = vsplat(0.0), one = vsplat(1.0), vdt = vsplat(dt), vrho = vsplat(rho), vrs0 = vsplat(rs0);
+    const v4d H = {h[0], h[1], h[2], h[3]}, PB = {pb[0], pb[1], pb[2], pb[3]}, MM = {M[0], M[1], M[2], M[3]};
+    const v4d sig = vsel(PB > zero, PB, zero);
+    const v4d A = vsplat(f->p[0]) * sig / vrho, t0 = vsel(sig > zero, vsplat(f->p[1] / rho), zero);
+    const v4d c = vrho / (sig + vsplat(0.001));
+    v4d lr;
     for (int k = 0; k < 4; ++k)
         lr[k] = h[k] > f->p[4] ? log(h[k] / f->p[4]) : 0.0;
-    const fv4 den = lr / fsplat(f->p[3]) + fsplat(f->p[5]);
-    const fv4 cd = one / (den * den);
-    const fm4 rest = vdt * (t0 + fsplat(2.0) * A) >= MM;
-    fv4 lo = zero, hi = MM / H, x = hi;
+    const v4d den = lr / vsplat(f->p[3]) + vsplat(f->p[5]);
+    const v4d cd = one / (den * den);
+    const v4i rest = vdt * (t0 + vsplat(2.0) * A) >= MM;
+    v4d lo = zero, hi = MM / H, x = hi;
     {
-        const fv4 Af = A * (one + vrs0 / (vrs0 + c * hi * hi)), b = MM - vdt * (t0 + Af);
-        const fm4 bp = b > zero;
-        const fv4 q = fsel(bp, H * H + fsplat(4.0) * vdt * cd * b, H * H);
-        fv4 sq;
+        const v4d Af = A * (one + vrs0 / (vrs0 + c * hi * hi)), b = MM - vdt * (t0 + Af);
+        const v4i bp = b > zero;
+        const v4d q = vsel(bp, H * H + vsplat(4.0) * vdt * cd * b, H * H);
+        v4d sq;
         for (int k = 0; k < 4; ++k)
             sq[k] = sqrt(q[k]);
-        const fv4 xq = fsplat(2.0) * b / (H + sq);
-        hi = fsel(bp, xq, hi);
-        x = fsel(bp, xq, fsplat(0.5) * hi);
+        const v4d xq = vsplat(2.0) * b / (H + sq);
+        hi = vsel(bp, xq, hi);
+        x = vsel(bp, xq, vsplat(0.5) * hi);
     }
-    fm4 act = ~rest;
-    for (int it = 0; it < 100 && fany(act); ++it) {
-        const fv4 r = one / (vrs0 + c * x * x), ar = A * vrs0 * r;
-        const fv4 gx = H * x + vdt * (t0 + A + ar + cd * x * x) - MM;
-        const fm4 run = act & ~(gx == zero);
-        const fm4 neg = gx < zero;
-        lo = fsel(run & neg, x, lo);
-        hi = fsel(run & ~neg, x, hi);
-        const fv4 dg = H + vdt * (fsplat(2.0) * cd * x - fsplat(2.0) * ar * c * x * r);
-        const fm4 dp = dg > zero;
-        fv4 xn = fsel(dp, x - gx / fsel(dp, dg, one), fsplat(-1.0));
-        const fm4 newton = (xn > lo) & (xn < hi);
-        xn = fsel(newton, xn, fsplat(0.5) * (lo + hi));
-        const fv4 d = xn - x, step = fsel(d < zero, -d, d);
-        x = fsel(run, xn, x);
-        const fm4 brk = (newton & (dg >= fsplat(0.5) * H) & (step <= fsplat(1e-8) * x)) |
-                        (step <= fsplat(1e-15) * x) | (hi - lo <= fsplat(1e-15) * hi);
+    v4i act = ~rest;
+    for (int it = 0; it < 100 && vany(act); ++it) {
+        const v4d r = one / (vrs0 + c * x * x), ar = A * vrs0 * r;
+        const v4d gx = H * x + vdt * (t0 + A + ar + cd * x * x) - MM;
+        const v4i run = act & ~(gx == zero);
+        const v4i neg = gx < zero;
+        lo = vsel(run & neg, x, lo);
+        hi = vsel(run & ~neg, x, hi);
+        const v4d dg = H + vdt * (vsplat(2.0) * cd * x - vsplat(2.0) * ar * c * x * r);
+        const v4i dp = dg > zero;
+        v4d xn = vsel(dp, x - gx / vsel(dp, dg, one), vsplat(-1.0));
+        const v4i newton = (xn > lo) & (xn < hi);
+        xn = vsel(newton, xn, vsplat(0.5) * (lo + hi));
+        const v4d d = xn - x, step = vsel(d < zero, -d, d);
+        x = vsel(run, xn, x);
+        const v4i brk = (newton & (dg >= vsplat(0.5) * H) & (step <= vsplat(1e-8) * x)) |
+                        (step <= vsplat(1e-15) * x) | (hi - lo <= vsplat(1e-15) * hi);
         act = run & ~brk;
     }
-    x = fsel(rest, zero, x);
+    x = vsel(rest, zero, x);
     for (int k = 0; k < 4; ++k)
         speed[k] = x[k];
 }
