@@ -65,6 +65,7 @@ Usage
 #include "keyword.H"
 #include "keepFreedMemory.H"
 #include "clipRoundOff.H"
+#include "repeatStep.H"
 
 int main(int argc, char *argv[])
 {
