@@ -290,8 +290,7 @@ static void implicit_speed_solves_backward_euler(void **state)
     assert_int_equal(gf_friction_implicit_speed(&c, &st, -1.0, dt, &s), GF_EDOM);
 }
 
-/* samosAT against the limits of its specification (shared/papers/
- * samosAT-friction.md): u -> 0 gives tau0 + 2 mu sigma_b (u0 = 0), large u
+/* samosAT against the limits of its specification (doc/theory/friction.md): u -> 0 gives tau0 + 2 mu sigma_b (u0 = 0), large u
  * Coulomb mu sigma_b plus the drag, whose coefficient at h = 1 m is
  * 1/(ln(20)/0.43 + 4.13)^2 = 8.12e-3; below h = R the logarithm is 0 (drag
  * 1/B^2); the fluidisation factor is 1 + Rs0/(Rs0 + Rs) at every speed; no

@@ -1,5 +1,5 @@
-/* Mass exchange (granflow/mass_exchange.h; specification
- * ../shared/papers/mass-exchange.md, "spec §n") pointwise and in the
+/* Mass exchange (granflow/mass_exchange.h; model reference
+ * doc/theory/mass-exchange.md, "spec §n" = its section n) pointwise and in the
  * explicit surface scheme (gf_surface_set_mass_exchange), against closed
  * forms: erosion at τ_b|u|/e_b per area with the momentum kept, ploughing
  * taking the swept layer, a layer running out, detrainment K/|u|, the

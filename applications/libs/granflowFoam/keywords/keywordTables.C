@@ -131,7 +131,7 @@ table massExchangeTable()
     {
         "granularProperties/massExchange", "constant/granularProperties", "massExchange/",
         "faGranularFlowFoam",
-        "Mass exchange with the bed and obstacles (../shared/papers/mass-exchange.md, after AvaFrame"
+        "Mass exchange with the bed and obstacles (doc/theory/mass-exchange.md, after AvaFrame"
         " com1DFA): entrainment where the layer 0/hEnt > 0, detrainment or increased friction where"
         " 0/resistance > 0 (both set from polygons by gfSetRelease -dict). Defaults: libgranflow's"
         " (granflow/mass_exchange.h). The explicit scheme only.",

@@ -69,7 +69,7 @@ void gf_riemann_sample(const gf_riemann *rp, double x, double t, double *h, doub
  * so h = (u_tip/C) sqrt(2 (X_front - X)); X_front follows from mass
  * conservation (the tip holds the released volume h_l c0 t minus the volume
  * of the outer region).  This closure is ours: the SWASHES implementation of
- * the tip is not in the shared papers.  Valid while the reservoir is not
+ * the tip is not in the finite-area paper.  Valid while the reservoir is not
  * reached by the reflection from a wall and while f is small against c0.
  */
 typedef struct gf_dressler {

@@ -23,7 +23,7 @@
  *   samosAT   (tau0 + mu (1 + Rs0/(Rs0+Rs)) p_b)/rho     mu (0.155), tau0 (0 Pa), Rs0 (0.222),
  *             x |u|/(|u|+u0) + u^2/(ln(h/R)/kappa + B)^2  kappa (0.43), R (0.05 m), B (4.13),
  *             Rs = rho u^2/(p_b + 0.001 Pa); ln(h/R) = 0  u0 (1e-4 m/s)   [AvaFrame com1DFA;
- *             for h < R (Sampl 2007)                     shared/papers/samosAT-friction.md]
+ *             for h < R (Sampl 2007)                     doc/theory/friction.md]
  *   none      0
  *
  * u0 regularises |u|/|u| near rest (paper eq. 24).  With u0 = 0 (exact

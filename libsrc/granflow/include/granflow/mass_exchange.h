@@ -1,8 +1,9 @@
 /*
  * granflow — mass exchange with the bed and with obstacles: entrainment
  * (erosion, ploughing), detrainment and increased friction in resistance
- * areas.  Specification: ../shared/papers/mass-exchange.md (after AvaFrame
- * com1DFA), cited below as "spec §n".
+ * areas.  Model reference: doc/theory/mass-exchange.md (after AvaFrame
+ * com1DFA; Tonnel et al. 2023, Geosci. Model Dev. 16, 7013), its section n
+ * cited below as "spec §n".
  *
  * Everything here is pointwise, per face and time step: a solver calls
  * gf_mass_exchange_face_update (or the single processes below) where it

@@ -3,7 +3,7 @@
  * path-following (s, l) coordinates, along-path profiles, runout, the MMA/AMA
  * indicators and the comparison of a run with a reference run.
  *
- * Specification: ../shared/papers/hazard-analysis.md, sections 1-3 (after
+ * Model reference: doc/theory/hazard-analysis.md, sections 1-3 (after
  * AvaFrame's ana3AIMEC, Fischer 2013, NHESS 13, 1655).  The analysis works
  * on rasters (gf_raster, any format GDAL reads), so it reads any tool's peak
  * fields, not only granflow's; a thin program (gfPathAnalysis) wraps it.

@@ -269,7 +269,7 @@ void gf_surface_moments(const gf_surface *s, double out[4]);
 double gf_surface_volume(const gf_surface *s);
 
 /* Mass exchange with the bed and obstacles (granflow/mass_exchange.h;
- * specification ../shared/papers/mass-exchange.md): entrainment where
+ * model reference doc/theory/mass-exchange.md): entrainment where
  * h_ent[f] > 0, detrainment or increased friction where resistance[f] > 0,
  * per owned face, switched by cfg->entrainment and cfg->resistance (a NULL
  * cfg, or both switches 0 - simType null - turns it off: the scheme is then

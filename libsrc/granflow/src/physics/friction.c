@@ -108,7 +108,7 @@ static void chezy_eval(const double *p, const gf_friction_state *s, gf_friction_
 static const gf_friction_type chezy_type = {
     "chezy", "Chezy friction, finite-area paper eq. 71", 1, chezy_params, NULL, chezy_eval};
 
-/* ---- samosAT (AvaFrame com1DFA's standard snow law; shared/papers/samosAT-friction.md) ---- */
+/* ---- samosAT (AvaFrame com1DFA's standard snow law; doc/theory/friction.md) ---- */
 static const gf_friction_param samosat_params[] = {
     {"mu", "-", "Coulomb coefficient (AvaFrame standard 0.155; Medium 0.17, Small 0.22)", 0.155, 0.0, 10.0},
     {"tau0", "Pa", "yield stress", 0.0, 0.0, 1e6},

@@ -1,5 +1,6 @@
 /* Mass exchange with the bed and obstacles: see granflow/mass_exchange.h.
- * "spec §n": ../shared/papers/mass-exchange.md, section n. */
+ * "spec §n": doc/theory/mass-exchange.md, section n (after AvaFrame com1DFA;
+ * Tonnel et al. 2023, Geosci. Model Dev. 16, 7013). */
 #include "granflow/mass_exchange.h"
 #include "internal.h"
 

@@ -298,8 +298,8 @@ gf_status gf_sh1d_wet_interval(const gf_sh1d *s, gf_sh1d_initial_fn fn, void *ct
  * t_s.  In the frame X = x - a t^2 / 2, U = u - a t that the source
  * accelerates uniformly (a = g sin zeta - sgn(u) tau / h, constant under
  * the conditions riemann_setup checks) the equations are homogeneous
- * (Mangeney, Heinrich & Roche 2000, Pure Appl. Geophys. 157; not among
- * ../shared/papers: the transformation is checked by the incline tests
+ * (Mangeney, Heinrich & Roche 2000, Pure Appl. Geophys. 157; see
+ * doc/theory/one-d-schemes.md: the transformation is checked by the incline tests
  * against Ritter's solution), and each dam's solution is Ritter's (the dry-bed
  * Riemann problem, gf_riemann) until the fans meet. */
 typedef struct {

@@ -1,6 +1,6 @@
 /* Mass exchange of the explicit surface scheme (granflow/surface.h,
  * gf_surface_set_mass_exchange): the pointwise updates of
- * granflow/mass_exchange.h (spec ../shared/papers/mass-exchange.md, §1-2)
+ * granflow/mass_exchange.h (spec doc/theory/mass-exchange.md, §1-2)
  * applied once per step, after the SSP-RK2 combination, to the owned
  * active faces; the per-face fields and totals of spec §4. */
 #include "surface_internal.h"

@@ -1,5 +1,6 @@
 /* Path analysis of peak rasters: see granflow/path_analysis.h and the
- * specification ../shared/papers/hazard-analysis.md, sections 1-3. */
+ * model reference doc/theory/hazard-analysis.md, sections 1-3 (Fischer 2013,
+ * NHESS 13, 1655). */
 #include "granflow/path_analysis.h"
 #include "internal.h"
 #include "terrain_internal.h"
