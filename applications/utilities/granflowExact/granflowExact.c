@@ -5,6 +5,8 @@
  *   granflowExact dressler G H_L C X0 T                < positions
  *   granflowExact chute ZETA0 ZETA1 X1 X2              < arc lengths
  *   granflowExact table PROFILE.csv                     < arc lengths
+ *   granflowExact simisol T
+ *   granflowExact incdam T
  *   granflowExact --version
  *
  * Reads one x per line (or the first column of a CSV with a header) on
@@ -20,13 +22,25 @@
  * inclination in radians - for the mesh generators of the tutorials.
  * table: the same for a tabulated profile (CSV with a header line, columns
  * x and zeta in degrees, x strictly increasing; libgranflow's cubic spline).
+ * simisol and incdam print the references of two standard tests at time T
+ * [s] (standard_tests.h, the standard parameters), reading no input:
+ * simisol, the similarity solution of Hutter et al. (1993), prints
+ * "t,g,dg,f,df,h_peak,x_c" - the stretching factors, their derivatives in
+ * tau = t/sqrt(Lx/g), the peak thickness H/(f g) [m] and the horizontal
+ * centre of mass [m]; incdam, the dam break on an inclined plane of
+ * Faccanoni & Mangeney (2013), prints "t,x_tail,x_front,x_mid" - the
+ * horizontal x [m] of the body/fan boundary, of the front and of xmid,
+ * downstream of which the rear edge has no influence.
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "gf_csv.h"
+#include "granflow/constants.h"
 #include "granflow/exact.h"
+#include "granflow/standard_tests.h"
 #include "granflow/topography.h"
 #include "granflow/version.h"
 
@@ -46,7 +60,9 @@ static void usage(void)
     fprintf(stderr, "usage: granflowExact riemann BETA H_L U_L H_R U_R X0 T < positions\n"
                     "       granflowExact dressler G H_L C X0 T < positions\n"
                     "       granflowExact chute ZETA0 ZETA1 X1 X2 < arc lengths\n"
-                    "       granflowExact table PROFILE.csv < arc lengths\n");
+                    "       granflowExact table PROFILE.csv < arc lengths\n"
+                    "       granflowExact simisol T\n"
+                    "       granflowExact incdam T\n");
     exit(2);
 }
 
@@ -124,6 +140,40 @@ static int chute(char **argv)
     return 0;
 }
 
+/* the references of the standard tests at time T (argv: simisol|incdam T) */
+static int standard_test(char **argv)
+{
+    const double t = num(argv[2], "T");
+    if (!(t >= 0.0) || !isfinite(t)) {
+        fprintf(stderr, "granflowExact: T = %g must be finite and >= 0\n", t);
+        return 2;
+    }
+    if (strcmp(argv[1], "simisol") == 0) {
+        const gf_simisol_params p = gf_simisol_default();
+        gf_simisol *s;
+        double g, dg, f, df;
+        if (gf_simisol_alloc(&s, &p, t, 1e-10) != GF_SUCCESS ||
+            gf_simisol_stretch(s, t, &g, &dg, &f, &df) != GF_SUCCESS) {
+            fprintf(stderr, "granflowExact: %s\n", gf_error_detail());
+            return 2;
+        }
+        gf_simisol_free(s);
+        printf("t,g,dg,f,df,h_peak,x_c\n%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", t, g, dg, f,
+               df, p.H / (f * g), gf_simisol_xc(&p, t));
+        return 0;
+    }
+    gf_incdam d;
+    if (gf_incdam_init(&d, 9.81, 22.0 * GF_DEG, 21.0 * GF_DEG, 1.0, -120.0) != GF_SUCCESS) {
+        fprintf(stderr, "granflowExact: %s\n", gf_error_detail());
+        return 2;
+    }
+    double x_tail, x_front;
+    gf_incdam_fan(&d, t, &x_tail, &x_front);
+    printf("t,x_tail,x_front,x_mid\n%.12g,%.12g,%.12g,%.12g\n", t, x_tail, x_front,
+           gf_incdam_xmid(&d, t));
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc > 1 && (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-version"))) {
@@ -132,6 +182,8 @@ int main(int argc, char **argv)
     }
     if ((argc == 6 && strcmp(argv[1], "chute") == 0) || (argc == 3 && strcmp(argv[1], "table") == 0))
         return chute(argv);
+    if (argc == 3 && (strcmp(argv[1], "simisol") == 0 || strcmp(argv[1], "incdam") == 0))
+        return standard_test(argv);
     static const char *rnames[] = {"BETA", "H_L", "U_L", "H_R", "U_R", "X0", "T"};
     static const char *dnames[] = {"G", "H_L", "C", "X0", "T"};
     const int riemann = argc == 9 && strcmp(argv[1], "riemann") == 0;

@@ -10,6 +10,7 @@
 #include "granflow/mass_exchange.h"
 #include "granflow/topography.h"
 #include "granflow/exact.h"
+#include "granflow/standard_tests.h"
 #include "granflow/kinetic1d.h"
 #include "granflow/dg1d.h"
 #include "granflow/sh1d.h"
