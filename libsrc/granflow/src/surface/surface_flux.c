@@ -47,12 +47,20 @@ static inline double hll(double hl, double ul, double vl, double al, double hr, 
 /* Pressure a_f h_f delta / 2 that face f in the hydrostatic mode feels at
  * its edge to face N: delta = h_N - h_N^eq, h_N^eq the thickness whose basal
  * pressure continues f's hydrostatically, a_N h_N^eq = a_f h_f + g.(x_N -
- * x_f) (0 where that is <= 0: a shoreline), a = -g.n. */
+ * x_f), a = -g.n.  Where that is <= 0 and N is dry, N is a shore above the
+ * lake: h_N^eq = 0 (delta = 0, no force).  A wet N keeps the negative
+ * h_N^eq: summed over the face the pressures are -A h (grad(a h) - g_s) to
+ * first order only so.  Up to 0.3.0 h_N^eq was 0 there too, a shoreline
+ * inside the layer wherever the bed drops more between face centres than
+ * the basal pressure head a h / |g| (5 m faces of a 1 m layer on 22 deg):
+ * a uniform layer there felt 73 % of its weight along the slope and stayed
+ * at rest under friction tan 21 deg (the inclined dam break of
+ * doc/theory/standard-tests.md). */
 static inline double hydrostatic_pressure(const gf_surface *s, const double *H, int f, int N)
 {
     const double *xf = s->m.centre + 3 * f, *xn = s->m.centre + 3 * N, *g = s->c.g;
     const double P = s->ahyd[f] * H[f] + g[0] * (xn[0] - xf[0]) + g[1] * (xn[1] - xf[1]) + g[2] * (xn[2] - xf[2]);
-    const double heq = P > 0.0 && s->ahyd[N] > 0.0 ? P / s->ahyd[N] : 0.0;
+    const double heq = (P > 0.0 || H[N] > s->c.h_dry) && s->ahyd[N] > 0.0 ? P / s->ahyd[N] : 0.0;
     return 0.5 * s->ahyd[f] * H[f] * (H[N] - heq);
 }
 
@@ -239,11 +247,12 @@ static void edge_flux4(gf_surface *s, const int *q)
  * side, hydrostatic_pressure where a face is in the hydrostatic mode, every
  * branch a selection per lane), so that each lane's results are those of
  * edge_flux bit for bit.  At rest, and in deposits, these are most edges. */
-static inline v4d hydrostatic_pressure4(v4d ahf, v4d hf, v4d ahn, v4d hn, v4d dx, v4d dy, v4d dz, const double *g)
+static inline v4d hydrostatic_pressure4(v4d ahf, v4d hf, v4d ahn, v4d hn, v4d dx, v4d dy, v4d dz, const double *g,
+                                        double h_dry)
 {
     const v4d zero = vsplat(0.0);
     const v4d P = ahf * hf + vsplat(g[0]) * dx + vsplat(g[1]) * dy + vsplat(g[2]) * dz;
-    const v4i ok = (P > zero) & (ahn > zero);
+    const v4i ok = ((P > zero) | (hn > vsplat(h_dry))) & (ahn > zero);
     const v4d heq = vsel(ok, P / vsel(ok, ahn, vsplat(1.0)), zero);
     return vsplat(0.5) * ahf * hf * (hn - heq);
 }
@@ -282,8 +291,8 @@ static void edge_static4(gf_surface *s, const double *H, const int *q)
     const v4d unu = vsel(upo, vo, vn);
     const v4d ut = vsel(upo, uo0, un0) * t0 + vsel(upo, uo1, un1) * t1 + vsel(upo, uo2, un2) * t2;
     const v4d po = half * ao * Ho * Hn, pn = half * an * Hn * Ho;
-    const v4d qo = vsel(so, hydrostatic_pressure4(aho, Ho, ahn, Hn, dx, dy, dz, s->c.g), po);
-    const v4d qn = vsel(sn, hydrostatic_pressure4(ahn, Hn, aho, Ho, mx, my, mz, s->c.g), pn);
+    const v4d qo = vsel(so, hydrostatic_pressure4(aho, Ho, ahn, Hn, dx, dy, dz, s->c.g, s->c.h_dry), po);
+    const v4d qn = vsel(sn, hydrostatic_pressure4(ahn, Hn, aho, Ho, mx, my, mz, s->c.g, s->c.h_dry), pn);
     const v4d fh = vsel(upo, Ho, Hn) * vm;
     const v4d adv0 = fh * (unu * nu0 + ut * t0), adv1 = fh * (unu * nu1 + ut * t1), adv2 = fh * (unu * nu2 + ut * t2);
     const v4d out[8] = {L * fh, po * PO, pn * PN, L * (adv0 + qo * nu0), L * (adv1 + qo * nu1),
