@@ -223,26 +223,16 @@ int main(int argc, char *argv[])
     (
         IOobject("standardTestDict", runTime.system(), runTime, IOobject::MUST_READ)
     );
-    const word testName(dict.get<word>("test"));
+    const granflow::keyword::table& kt = granflow::keyword::get("standardTestDict");
+    granflow::keyword::checkKeys(dict, kt);
+    const word testName(granflow::keyword::read<word>(dict, kt, "test"));
     const testDef* tp = nullptr;
     for (const testDef& t : tests)
     {
         if (testName == t.name) tp = &t;
     }
-    if (!tp)
-    {
-        FatalIOErrorInFunction(dict)
-            << "test " << testName << " in " << dict.objectPath()
-            << " is not one of similarity, damBreak, flatPlane" << exit(FatalIOError);
-    }
-    const testDef& t = *tp;
-    const scalar csz = dict.get<scalar>("cellSize");
-    if (!(csz >= 0.1 && csz <= 20))
-    {
-        FatalIOErrorInFunction(dict)
-            << "cellSize " << csz << " in " << dict.objectPath() << " is outside [0.1, 20] m"
-            << exit(FatalIOError);
-    }
+    const testDef& t = *tp;   // the table allows only the three names
+    const scalar csz = granflow::keyword::read<scalar>(dict, kt, "cellSize");
     const grid g = makeGrid(t, csz);
 
     if (args.found("mesh"))

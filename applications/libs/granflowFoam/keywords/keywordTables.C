@@ -522,6 +522,22 @@ std::vector<table> makeTables()
         }
     );
 
+    // ---- gfStandardTest: system/standardTestDict ------------------------------------
+    T.push_back
+    ({
+        "standardTestDict", "system/standardTestDict", "", "gfStandardTest",
+        "The standard analytic test of a case (tutorials/standardTests; definitions in"
+        " doc/theory/standard-tests.md).",
+        true, "",
+        {
+            {"test", "word", "required", "similarity | damBreak | flatPlane", "", "",
+             "the test: the similarity solution (Hutter et al. 1993), the dam break on an inclined"
+             " Coulomb plane (Faccanoni & Mangeney 2013) or the flat-plane pile"},
+            {"cellSize", "scalar", "required", "[0.1, 20]", "m", "",
+             "cell size of the output grid and of the mesh (the DEM's lower-left cell centre kept)"},
+        }
+    });
+
     // ---- gfTerrainMesh: system/terrainDict, constant/terrainProperties --------------
     T.push_back
     ({
