@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Shared helpers of the granflow cmocka tests.
  * cmocka 1.1.5 (Debian bookworm) compares assert_float_equal in single
  * precision; assert_close compares doubles to an absolute tolerance and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* A temporary folder for a test program's files (the terrain, path-analysis
  * and ensemble tests write rasters and vectors through GDAL): GF_TMPDIR_FIXTURES(prefix)
  * defines tmpdir, tmp(name) (its path, four kept at a time), and the group

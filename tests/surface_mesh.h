@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Test and benchmark helper: a structured nx x ny quadrilateral surface mesh
  * on a developable surface (a plane, or a surface bent along x by an
  * inclination profile zeta(x)), flattened into gf_surface_mesh arrays.  The

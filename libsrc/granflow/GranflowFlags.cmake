@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Compiler settings of every C target of granflow (the library and its
 # consumers): C11, warnings are errors, optional sanitizers.  Included by the
 # top-level CMakeLists.txt, or by the library's when it is built on its own.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * Speed against error of the 1D solvers (a benchmark, not a test: nothing is
  * asserted).  Every scheme at six resolutions on

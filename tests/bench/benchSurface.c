@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * Single-core throughput of the explicit surface kernel (granflow/surface.h),
  * without OpenFOAM: a benchmark, not a test (nothing is asserted).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * Lake at rest under the explicit surface scheme (granflow/surface.h): a
  * diagnostic, not a test (nothing is asserted; test_surface's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Earth-pressure coefficients K_act/K_pass (rkdg paper, section 2).
  * Expected values: computed independently (Python, double precision) and
  * the sum/product relations of the two roots (Vieta), a different formula. */

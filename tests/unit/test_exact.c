@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Exact and approximate solutions of libgranflow (exact.h).
  * Dressler's dam break with Chezy friction (finite-area paper, section
  * 6.1.3): the first-order expansion is checked against the equations

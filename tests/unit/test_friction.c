@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Friction-law table: values against independent Python computations of
  * finite-area paper eqs. 24-26, 60, 71; selection by name; bad input. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The path analysis of peak rasters (granflow/path_analysis.h;
  * hazard-analysis specification sections 1-3) against closed forms: synthetic
  * DEMs and fields written with GDAL (GeoTIFF, float64) into a temporary

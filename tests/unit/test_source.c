@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Savage–Hutter net driving acceleration (rkdg eq. 2) and the static
  * friction bound at rest (kinetic paper, Definition 1).  Reference values
  * computed independently in Python. */

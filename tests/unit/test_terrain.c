@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* libgranflowTerrain: DEMs, polygons, the mesh grid, rasters on the DEM's
  * grid (granflow/terrain.h).  The avaHelix DEM and release polygon come from
  * tutorials/avaHelix/Inputs (AvaFrame test data); the small cases are written

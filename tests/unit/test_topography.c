@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Chute topography: rkdg eq. 3 / finite-area eq. 74, the rkdg appendix
  * mapping (re-implemented here from the appendix text), and the tabulated
  * GSL-spline profile against the closed-form arc of a linear zeta(x). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Mass exchange (granflow/mass_exchange.h; model reference
  * doc/theory/mass-exchange.md, "spec §n" = its section n) pointwise and in the
  * explicit surface scheme (gf_surface_set_mass_exchange), against closed

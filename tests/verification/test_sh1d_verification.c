@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Verification of the 1D Savage–Hutter solvers (issue 3, item 6):
  *  (a) smooth problem, orders of accuracy of RKDG P1 and P2;
  *  (b) kinetic paper's Riemann problem against the exact solution;

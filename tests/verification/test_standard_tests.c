@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The field's standard analytic tests (granflow/standard_tests.h;
  * doc/theory/standard-tests.md): the similarity solution of Hutter et al.
  * (1993) against its check values at t = 5 s, its volume, its centre of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Explicit surface scheme (granflow/surface.h) against exact solutions,
  * the 1D reference and the invariants it must keep. */
 #include "../gf_test.h"

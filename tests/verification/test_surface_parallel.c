@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Explicit surface scheme (granflow/surface.h) decomposed: a serial strip
  * mesh is split into ranks by a face -> rank map, each rank is a gf_surface
  * with ghost faces (one per processor edge, as OpenFOAM's processor patches

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*---------------------------------------------------------------------------*\
     granflow — libgranflowHazardMaps: the hazard maps (hazardMaps.H, the code
     of gfHazardMaps) for faGranularFlowFoam, which opens this library only

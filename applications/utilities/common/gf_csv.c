@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Strict number and CSV parsing shared by granflow's C programs (gf_csv.h). */
 #include "gf_csv.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — strict number and CSV parsing for the C programs (granflow1d,
  * granflowExact): one parser, so that every input file is validated alike.

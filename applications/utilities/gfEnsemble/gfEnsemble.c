@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * gfEnsemble — the numerical steps of an ensemble of runs (hazard-analysis
  * specification, section 4); the driver gfRunEnsemble calls them.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * gfPathAnalysis — the path analysis of peak rasters (hazard-analysis
  * specification, sections 1-3; AvaFrame's ana3AIMEC): runout along the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow1d — run a 1D Savage–Hutter case with libgranflow's RKDG or kinetic
  * solvers.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow1d_keys.h — the keys of granflow1d's case files, one row each:
  * section, key, type, default, allowed range or choices, unit, what it

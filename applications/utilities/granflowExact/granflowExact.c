@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflowExact — libgranflow's exact solutions at given positions.
  *

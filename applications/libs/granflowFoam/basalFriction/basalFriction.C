@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 #include "basalFriction.H"
 #include "error.H"
 #include "keyword.H"

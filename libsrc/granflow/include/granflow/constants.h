@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* granflow — mathematical constants shared by the library, its programs and
  * tests (one definition instead of a DEG/PI macro per file). */
 #ifndef GRANFLOW_CONSTANTS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — Runge–Kutta discontinuous Galerkin solver for the 1D
  * Savage–Hutter equations (rkdg paper, section 3), solver type gf_sh1d_rkdg

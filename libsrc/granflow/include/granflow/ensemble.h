@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — ensembles of runs: the sampling of uncertain inputs and the
  * statistics of the members' results (hazard-analysis specification,

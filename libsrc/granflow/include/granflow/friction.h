@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — basal friction laws, selected by name from a table of types
  * (the gsl_odeiv2_step_type pattern).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* granflow — umbrella header: the whole public API of libgranflow. */
 #ifndef GRANFLOW_GRANFLOW_H
 #define GRANFLOW_GRANFLOW_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — kinetic schemes for the 1D Savage–Hutter equations
  * (Kaland & Struckmeier, kinetic paper, section 3), solver type

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — mass exchange with the bed and with obstacles: entrainment
  * (erosion, ploughing), detrainment and increased friction in resistance

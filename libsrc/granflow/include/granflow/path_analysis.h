@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — path analysis of peak rasters (libgranflowTerrain): the
  * path-following (s, l) coordinates, along-path profiles, runout, the MMA/AMA

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — 1D Savage–Hutter solvers: common configuration and interface.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — Savage–Hutter net driving acceleration (gravity minus Coulomb
  * bed friction with curvature) in the down-slope direction.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — references and error measures of the field's standard analytic
  * tests for 2D dense-flow solvers (doc/theory/standard-tests.md):

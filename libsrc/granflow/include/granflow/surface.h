@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — explicit high-resolution finite-volume scheme for the
  * Rauter–Tuković model on a curved surface mesh (finite-area paper eqs. 30,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — 1D chute topography: inclination zeta(x) and curvature
  * kappa(x) = -d zeta/dx along the down-slope arc length x of the bed, and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — verification helpers: errors of a 1D solution against a
  * reference or an exact solution.  For tests and benchmarks (tests/,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Internal helpers of libgranflow: not installed, not part of the API. */
 #ifndef GRANFLOW_INTERNAL_H
 #define GRANFLOW_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Four-lane vectors of libgranflow's kernels (GCC vector extensions): the
  * type, splat, load and the lane-wise selections, shared by the surface
  * kernels (surface/surface_simd.h adds their transposes) and the four-lane

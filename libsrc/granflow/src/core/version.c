@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* gf_version: the version the library was built as (granflow/version.h) */
 #include "granflow/version.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — references and error measures of the field's standard analytic
  * tests (granflow/standard_tests.h, doc/theory/standard-tests.md).

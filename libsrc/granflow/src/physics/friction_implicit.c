@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The implicit friction update's speed, law by law (friction_implicit.h):
  * the solvers of h s + dt tau(s) = M behind gf_friction_implicit_speed, and
  * its named failure.  Calls only down, into the laws (friction.c, through

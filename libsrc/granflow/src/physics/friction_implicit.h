@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The implicit friction update's out-of-line parts (friction_implicit.c),
  * and the primitive that they and the inline entry (friction_speed.h) both
  * use.  Depends only on granflow/friction.h; the inline entry sits above

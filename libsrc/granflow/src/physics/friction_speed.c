@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* gf_friction_implicit_speed (granflow/friction.h): the argument checks
  * and friction_speed.h's inline entry, out of line for the library's
  * users.  Above friction_speed.h; nothing calls back up into it. */

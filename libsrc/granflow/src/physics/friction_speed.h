@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The implicit friction update's speed (gf_friction_implicit_speed) as an
  * inline entry for the per-face kernels (the explicit surface scheme calls it
  * per face and stage): the argument test and the exact Coulomb law (u0 = 0)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Mass exchange with the bed and obstacles: see granflow/mass_exchange.h.
  * "spec §n": doc/theory/mass-exchange.md, section n (after AvaFrame com1DFA;
  * Tonnel et al. 2023, Geosci. Model Dev. 16, 7013). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 #include "granflow/dg1d.h"
 #include "granflow/source.h"
 #include "internal.h"

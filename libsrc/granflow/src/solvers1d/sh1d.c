@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 #include "granflow/sh1d.h"
 #include "granflow/exact.h"
 #include "granflow/source.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Internal interface between the 1D driver (sh1d.c) and the schemes. */
 #ifndef GRANFLOW_SH1D_INTERNAL_H
 #define GRANFLOW_SH1D_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Uniform refinement of a surface mesh (granflow/surface.h,
  * gf_surface_mesh_refine): every face of k edges becomes k quadrilaterals,
  * each made of the face centre, the midpoints of two consecutive edges and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Explicit finite-volume scheme on a surface mesh: see granflow/surface.h.
  * The core: configuration and mesh checks, edge frames, alloc/free, the
  * state, the SSP-RK2 step driver; the parts are listed in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The active set of the surface scheme: wet faces and two rings of
  * neighbours, and their edges; dry terrain costs nothing. */
 #include "surface_internal.h"

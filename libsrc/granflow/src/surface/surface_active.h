@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The active set of the surface scheme (surface_active.c).  Private. */
 #ifndef GRANFLOW_SURFACE_ACTIVE_H
 #define GRANFLOW_SURFACE_ACTIVE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The step bound of the surface scheme (gf_surface_max_dt): the Courant
  * condition of positivity from HLL's outgoing wave speeds. */
 #include "surface_internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The total kinetic energy of the owned faces (gf_surface_kinetic_energy):
  * the end condition of a run (the flow has stopped when it falls below a
  * fraction of its running peak, as AvaFrame ends its runs). */

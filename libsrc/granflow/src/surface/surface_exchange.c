@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Mass exchange of the explicit surface scheme (granflow/surface.h,
  * gf_surface_set_mass_exchange): the pointwise updates of
  * granflow/mass_exchange.h (spec doc/theory/mass-exchange.md, §1-2)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Mass exchange of the surface scheme (surface_exchange.c).  Private. */
 #ifndef GRANFLOW_SURFACE_EXCHANGE_H
 #define GRANFLOW_SURFACE_EXCHANGE_H

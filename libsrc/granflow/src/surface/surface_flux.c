@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Edge fluxes of the surface scheme: HLL in the edge frame, the static
  * edges' donor flux and pressures, boundary edges; their sums per face and
  * the positivity fallback. */

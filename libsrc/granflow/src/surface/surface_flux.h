@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Edge fluxes of the surface scheme (surface_flux.c), and HLL's wave speed
  * bounds, which the step bound (surface_cfl.c) shares: inline.  Private. */
 #ifndef GRANFLOW_SURFACE_FLUX_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Parallel runs of the surface scheme: the caller's halo exchange and
  * global-minimum callbacks, and the halos of the refined start-up levels. */
 #include "surface_internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Parallel runs of the surface scheme (surface_halo.c).  Private. */
 #ifndef GRANFLOW_SURFACE_HALO_H
 #define GRANFLOW_SURFACE_HALO_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Private interface of the explicit surface scheme (granflow/surface.h):
  * the kernel's struct and its per-edge and per-slot layouts, the small
  * inline helpers that the parts' hot loops share, and the core's functions

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Reconstruction of the surface scheme: Green-Gauss gradients, limited,
  * and the reconstructed states at the edges of the owned active faces. */
 #include "surface_internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Reconstruction of the surface scheme (surface_recon.c), and the states
  * at an edge that the edge fluxes read: inline, for the flux pass.  Private. */
 #ifndef GRANFLOW_SURFACE_RECON_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Four-lane vectors of the surface kernels (GCC vector extensions): the
  * lane helpers of the reconstruction, edge fluxes and step bound.  Private. */
 #ifndef GRANFLOW_SURFACE_SIMD_H

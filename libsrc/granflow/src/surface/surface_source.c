@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Sources and friction of the surface scheme: the face update of a stage
  * (mass, momentum with gravity and the basal pressure of eq. 33, then the
  * implicit friction update). */

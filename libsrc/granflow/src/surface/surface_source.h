@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Sources and friction of the surface scheme (surface_source.c).  Private. */
 #ifndef GRANFLOW_SURFACE_SOURCE_H
 #define GRANFLOW_SURFACE_SOURCE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The start-up of the surface scheme on refined meshes
  * (gf_surface_config.startup_levels). */
 #include "surface_internal.h"

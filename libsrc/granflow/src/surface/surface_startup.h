@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The start-up on refined meshes (surface_startup.c).  Private. */
 #ifndef GRANFLOW_SURFACE_STARTUP_H
 #define GRANFLOW_SURFACE_STARTUP_H

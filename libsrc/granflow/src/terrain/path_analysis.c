@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Path analysis of peak rasters: see granflow/path_analysis.h and the
  * model reference doc/theory/hazard-analysis.md, sections 1-3 (Fischer 2013,
  * NHESS 13, 1655). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Internal helpers shared by the files of libgranflowTerrain (terrain.c,
  * path_analysis.c): not installed, not part of the API. */
 #ifndef GRANFLOW_TERRAIN_INTERNAL_H
