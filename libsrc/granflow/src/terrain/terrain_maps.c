@@ -1,0 +1,492 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Real terrain through GDAL/OGR (see granflow/terrain.h): what is made from
+ * rasters for the user: the outline of an area (GeoJSON polygons), a line as
+ * GeoJSON, the shaded map (PNG), the probability raster of an ensemble and its
+ * contour lines. */
+#include "granflow/terrain.h"
+#include "granflow/path_analysis.h"
+#include "internal.h"
+#include "terrain_internal.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <gdal_alg.h>
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/*--------------------------------------------------------------- outline --*/
+
+/* The CRS of a GeoJSON layer, x = easting */
+static OGRSpatialReferenceH geojson_srs(const char *wkt)
+{
+    OGRSpatialReferenceH srs = OSRNewSpatialReference(wkt);
+    if (srs)
+        OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
+    return srs;
+}
+
+/* GeoJSON is WGS 84 longitude/latitude (RFC 7946): a layer with a CRS is
+ * reprojected to it on writing; one without (a synthetic terrain) keeps its
+ * coordinates */
+static char *rfc7946[] = {"RFC7946=YES", NULL};
+
+/* The set-up GDAL's raster-to-vector algorithms share (gf_raster_outline,
+ * gf_raster_contours): values (of type t) on grid in an in-memory band, an
+ * in-memory layer of geometry type gtype for the algorithm to fill, and the
+ * grid's CRS for GeoJSON (NULL without one).  Messages start with
+ * "<what> <path>:".  Whatever was made is returned for the caller to close. */
+static gf_status band_and_layer(const char *what, const char *path, const gf_raster *grid, void *values,
+                                GDALDataType t, const char *layer, OGRwkbGeometryType gtype, GDALDatasetH *mem,
+                                GDALRasterBandH *band, GDALDatasetH *vmem, OGRLayerH *ml, OGRSpatialReferenceH *srs)
+{
+    *mem = gf_terrain_mem_raster(grid, grid->nx, grid->ny, 1, t);
+    if (!*mem)
+        return gf_fail(GF_EIO, "%s %s: %s", what, path, gf_terrain_gdal_msg());
+    *band = GDALGetRasterBand(*mem, 1);
+    if (GDALRasterIO(*band, GF_Write, 0, 0, grid->nx, grid->ny, values, grid->nx, grid->ny, t, 0, 0) != CE_None)
+        return gf_fail(GF_EIO, "%s %s: %s", what, path, gf_terrain_gdal_msg());
+    if (grid->wkt && *grid->wkt)
+        *srs = geojson_srs(grid->wkt);
+    GDALDriverH vdrv = GDALGetDriverByName("Memory"), gj = GDALGetDriverByName("GeoJSON");
+    *vmem = vdrv ? GDALCreate(vdrv, "", 0, 0, 0, GDT_Unknown, NULL) : NULL;
+    if (!*vmem || !gj)
+        return gf_fail(GF_EIO, "%s %s: GDAL lacks the Memory or GeoJSON driver", what, path);
+    *ml = GDALDatasetCreateLayer(*vmem, layer, *srs, gtype, NULL);
+    return *ml ? GF_SUCCESS : gf_fail(GF_EIO, "%s %s: %s", what, path, gf_terrain_gdal_msg());
+}
+
+/* Close what band_and_layer made and the output dataset (any may be NULL) */
+static void close_band_and_layer(GDALDatasetH out, GDALDatasetH vmem, GDALDatasetH mem, OGRSpatialReferenceH srs)
+{
+    if (out)
+        GDALClose(out);
+    if (vmem)
+        GDALClose(vmem);
+    if (mem)
+        GDALClose(mem);
+    if (srs)
+        OSRDestroySpatialReference(srs);
+}
+
+gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
+                            double threshold, double *area)
+{
+    gf_terrain_gdal_init();
+    if (!(isfinite(threshold) && threshold > 0))
+        return gf_fail(GF_EDOM, "outline %s: threshold %g must be finite and > 0", path, threshold);
+    const size_t n = (size_t)grid->nx * (size_t)grid->ny;
+    unsigned char *mask = malloc(n);
+    if (!mask)
+        return gf_fail(GF_ENOMEM, "outline %s: out of memory", path);
+    size_t count = 0;
+    for (size_t i = 0; i < n; ++i)
+        count += (mask[i] = isfinite(values[i]) && values[i] >= threshold);
+    if (area)
+        *area = (double)count * grid->gt[1] * -grid->gt[5];
+    GDALDatasetH mem = NULL, vmem = NULL, out = NULL;
+    GDALRasterBandH b = NULL;
+    OGRLayerH ml = NULL;
+    OGRSpatialReferenceH srs = NULL;
+    GDALDriverH gj = GDALGetDriverByName("GeoJSON");
+    gf_status st = band_and_layer("outline", path, grid, mask, GDT_Byte, "mask", wkbPolygon, &mem, &b, &vmem, &ml, &srs);
+    if (st)
+        goto done;
+    OGRFieldDefnH fd = OGR_Fld_Create("value", OFTInteger);
+    OGR_L_CreateField(ml, fd, TRUE);
+    OGR_Fld_Destroy(fd);
+    /* the mask band as its own mask: only the affected pixels become polygons */
+    if (GDALPolygonize(b, b, ml, 0, NULL, NULL, NULL) != CE_None) {
+        st = gf_fail(GF_EIO, "outline %s: polygonize failed (%s)", path, gf_terrain_gdal_msg());
+        goto done;
+    }
+    unlink(path);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    out = GDALCreate(gj, path, 0, 0, 0, GDT_Unknown, NULL);
+    CPLPopErrorHandler();
+    if (!out) {
+        st = gf_fail(GF_EIO, "outline %s: GDAL cannot write it (%s)", path, gf_terrain_gdal_msg());
+        goto done;
+    }
+    OGRLayerH ol = GDALDatasetCreateLayer(out, "affected_area", srs, wkbPolygon, srs ? rfc7946 : NULL);
+    OGRFieldDefnH fa = OGR_Fld_Create("area_m2", OFTReal);
+    OGRFieldDefnH ft = OGR_Fld_Create("threshold", OFTReal);
+    OGR_L_CreateField(ol, fa, TRUE);
+    OGR_L_CreateField(ol, ft, TRUE);
+    OGR_Fld_Destroy(fa);
+    OGR_Fld_Destroy(ft);
+    OGR_L_ResetReading(ml);
+    OGRFeatureH f;
+    while ((f = OGR_L_GetNextFeature(ml)) != NULL) {
+        OGRFeatureH g = OGR_F_Create(OGR_L_GetLayerDefn(ol));
+        OGRGeometryH geom = OGR_F_GetGeometryRef(f);
+        OGR_F_SetGeometry(g, geom);
+        OGR_F_SetFieldDouble(g, 0, OGR_G_Area(geom));
+        OGR_F_SetFieldDouble(g, 1, threshold);
+        const OGRErr e = OGR_L_CreateFeature(ol, g);
+        OGR_F_Destroy(g);
+        OGR_F_Destroy(f);
+        if (e != OGRERR_NONE) {
+            st = gf_fail(GF_EIO, "outline %s: writing a polygon failed (%s)", path, gf_terrain_gdal_msg());
+            goto done;
+        }
+    }
+done:
+    close_band_and_layer(out, vmem, mem, srs);
+    free(mask);
+    return st;
+}
+
+gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const double *xyz, const char *name,
+                          size_t nprops, const char *const *keys, const double *values)
+{
+    gf_terrain_gdal_init();
+    if (n < 2)
+        return gf_fail(GF_EDOM, "line %s: %zu points; a line needs at least 2", path, n);
+    GDALDriverH gj = GDALGetDriverByName("GeoJSON");
+    if (!gj)
+        return gf_fail(GF_EIO, "line %s: GDAL lacks the GeoJSON driver", path);
+    OGRSpatialReferenceH srs = NULL;
+    if (wkt && *wkt)
+        srs = geojson_srs(wkt);
+    unlink(path);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALDatasetH out = GDALCreate(gj, path, 0, 0, 0, GDT_Unknown, NULL);
+    CPLPopErrorHandler();
+    gf_status st = GF_SUCCESS;
+    if (!out) {
+        st = gf_fail(GF_EIO, "line %s: GDAL cannot write it (%s)", path, gf_terrain_gdal_msg());
+        goto done;
+    }
+    OGRLayerH L = GDALDatasetCreateLayer(out, name, srs, wkbLineString25D, srs ? rfc7946 : NULL);
+    OGRFieldDefnH fn = OGR_Fld_Create("name", OFTString);
+    OGR_L_CreateField(L, fn, TRUE);
+    OGR_Fld_Destroy(fn);
+    for (size_t k = 0; k < nprops; ++k) {
+        OGRFieldDefnH fd = OGR_Fld_Create(keys[k], OFTReal);
+        OGR_L_CreateField(L, fd, TRUE);
+        OGR_Fld_Destroy(fd);
+    }
+    OGRFeatureH f = OGR_F_Create(OGR_L_GetLayerDefn(L));
+    OGR_F_SetFieldString(f, 0, name);
+    for (size_t k = 0; k < nprops; ++k)
+        OGR_F_SetFieldDouble(f, (int)k + 1, values[k]);
+    OGRGeometryH g = OGR_G_CreateGeometry(wkbLineString25D);
+    for (size_t i = 0; i < n; ++i)
+        OGR_G_AddPoint(g, xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    OGR_F_SetGeometryDirectly(f, g);
+    if (OGR_L_CreateFeature(L, f) != OGRERR_NONE)
+        st = gf_fail(GF_EIO, "line %s: writing the feature failed (%s)", path, gf_terrain_gdal_msg());
+    OGR_F_Destroy(f);
+done:
+    if (out)
+        GDALClose(out);
+    if (srs)
+        OSRDestroySpatialReference(srs);
+    return st;
+}
+
+/*------------------------------------------------------------------- map --*/
+
+static void ramp(double t, double rgb[3])
+{
+    static const double stop[4][3] = {{1.0, 1.0, 0.55}, {1.0, 0.7, 0.0}, {0.85, 0.1, 0.1}, {0.4, 0.0, 0.45}};
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    const double s = 3.0 * t;
+    const int i = s >= 3.0 ? 2 : (int)s;
+    const double u = s - i;
+    for (int c = 0; c < 3; ++c)
+        rgb[c] = (1 - u) * stop[i][c] + u * stop[i + 1][c];
+}
+
+/* A 3 x 5 pixel font for the scale's numbers: digits, '.', '-', '+', 'e' */
+static const char *glyph(char ch)
+{
+    switch (ch) {
+    case '0': return "111101101101111";
+    case '1': return "010110010010111";
+    case '2': return "111001111100111";
+    case '3': return "111001111001111";
+    case '4': return "101101111001001";
+    case '5': return "111100111001111";
+    case '6': return "111100111101111";
+    case '7': return "111001001001001";
+    case '8': return "111101111101111";
+    case '9': return "111101111001111";
+    case '.': return "000000000000010";
+    case '-': return "000000111000000";
+    case '+': return "000010111010000";
+    case 'e': return "000111111100111";
+    default: return "000000000000000";
+    }
+}
+
+static int text_width(const char *t, int fs) { return (int)strlen(t) * 4 * fs - fs; }
+
+/* black text with its top-left corner at (x, y), pixels scaled by fs */
+static void draw_text(unsigned char *img, int nx, int H, int x, int y, const char *t, int fs)
+{
+    const size_t np = (size_t)nx * (size_t)H;
+    for (; *t; ++t, x += 4 * fs) {
+        const char *g = glyph(*t);
+        for (int r = 0; r < 5 * fs; ++r)
+            for (int c = 0; c < 3 * fs; ++c)
+                if (g[(r / fs) * 3 + c / fs] == '1' && x + c >= 0 && x + c < nx && y + r < H)
+                    for (int k = 0; k < 3; ++k)
+                        img[k * np + (size_t)(y + r) * nx + (x + c)] = 0;
+    }
+}
+
+gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *values,
+                        double vmin, double vmax)
+{
+    gf_terrain_gdal_init();
+    if (!(vmax > vmin) || !isfinite(vmin) || !isfinite(vmax))
+        return gf_fail(GF_EDOM, "map %s: colour range [%g, %g] is empty or not finite", path, vmin, vmax);
+    /* below the map: the colour bar, then vmin and vmax at its ends */
+    const int nx = dem->nx, ny = dem->ny, bar = ny / 40 + 4, fs = nx >= 300 ? 2 : 1;
+    const int H = ny + 2 + bar + 3 + 5 * fs + 2;
+    const size_t np = (size_t)nx * (size_t)H;
+    unsigned char *img = malloc(3 * np);
+    if (!img)
+        return gf_fail(GF_ENOMEM, "map %s: out of memory", path);
+    const double d = dem->gt[1], deg = acos(-1.0) / 180.0;
+    const double alt = 45 * deg, az = 315 * deg;
+    const double L[3] = {cos(alt) * sin(az), cos(alt) * cos(az), sin(alt)};
+    const double *z = dem->z;
+    /* contour lines: about ten over the elevation range, at 1, 2 or 5 x 10^n m */
+    double zlo = HUGE_VAL, zhi = -HUGE_VAL;
+    for (size_t i = 0; i < (size_t)nx * ny; ++i)
+        if (!isnan(z[i]))
+            zlo = fmin(zlo, z[i]), zhi = fmax(zhi, z[i]);
+    double dz = pow(10.0, floor(log10(fmax(zhi - zlo, 1e-3) / 10.0)));
+    dz *= (zhi - zlo) / dz > 50 ? 5 : (zhi - zlo) / dz > 20 ? 2 : 1;
+    for (int r = 0; r < ny; ++r)
+        for (int c = 0; c < nx; ++c) {
+            const size_t i = (size_t)r * nx + c;
+            double rgb[3] = {1, 1, 1};
+            if (!isnan(z[i])) {
+                /* one-sided differences next to the edge or NODATA */
+                const int cl = c > 0 && !isnan(z[i - 1]) ? c - 1 : c, cr = c + 1 < nx && !isnan(z[i + 1]) ? c + 1 : c;
+                const int ru = r > 0 && !isnan(z[i - nx]) ? r - 1 : r, rd = r + 1 < ny && !isnan(z[i + nx]) ? r + 1 : r;
+                const double zx = cr > cl ? (z[(size_t)r * nx + cr] - z[(size_t)r * nx + cl]) / ((cr - cl) * d) : 0;
+                /* rows run southwards: north is towards smaller r */
+                const double zy = rd > ru ? (z[(size_t)ru * nx + c] - z[(size_t)rd * nx + c]) / ((rd - ru) * d) : 0;
+                const double nl = sqrt(zx * zx + zy * zy + 1);
+                double shade = (-zx * L[0] - zy * L[1] + L[2]) / nl;
+                shade = shade < 0 ? 0 : shade;
+                double grey = 0.25 + 0.75 * shade;
+                /* a contour between this pixel and its east or south neighbour */
+                const double band = floor(z[i] / dz);
+                if ((c + 1 < nx && !isnan(z[i + 1]) && floor(z[i + 1] / dz) != band) ||
+                    (r + 1 < ny && !isnan(z[i + nx]) && floor(z[i + nx] / dz) != band))
+                    grey *= 0.7;
+                rgb[0] = rgb[1] = rgb[2] = grey;
+                if (isfinite(values[i]) && values[i] >= vmin) {
+                    double col[3];
+                    ramp((values[i] - vmin) / (vmax - vmin), col);
+                    for (int k = 0; k < 3; ++k)
+                        rgb[k] = col[k] * (0.45 + 0.55 * shade);
+                }
+            }
+            for (int k = 0; k < 3; ++k)
+                img[k * np + i] = (unsigned char)lround(255 * rgb[k]);
+        }
+    for (int r = ny; r < H; ++r)
+        for (int c = 0; c < nx; ++c) {
+            double col[3] = {1, 1, 1};
+            if (r >= ny + 2 && r < ny + 2 + bar)
+                ramp((double)c / (nx - 1), col);
+            for (int k = 0; k < 3; ++k)
+                img[k * np + (size_t)r * nx + c] = (unsigned char)lround(255 * col[k]);
+        }
+    char lo[32], hi[32];
+    snprintf(lo, sizeof lo, "%.3g", vmin);
+    snprintf(hi, sizeof hi, "%.3g", vmax);
+    const int ty = ny + 2 + bar + 3;
+    draw_text(img, nx, H, 1, ty, lo, fs);
+    draw_text(img, nx, H, nx - 1 - text_width(hi, fs), ty, hi, fs);
+    gf_status st = GF_SUCCESS;
+    GDALDatasetH mem = gf_terrain_mem_raster(NULL, nx, H, 3, GDT_Byte), out = NULL;
+    GDALDriverH png = GDALGetDriverByName("PNG");
+    if (!mem || !png) {
+        st = gf_fail(GF_EIO, "map %s: GDAL lacks the MEM or PNG driver", path);
+        goto done;
+    }
+    if (GDALDatasetRasterIO(mem, GF_Write, 0, 0, nx, H, img, nx, H, GDT_Byte, 3, NULL, 0, 0, 0) != CE_None) {
+        st = gf_fail(GF_EIO, "map %s: %s", path, gf_terrain_gdal_msg());
+        goto done;
+    }
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    out = GDALCreateCopy(png, path, mem, FALSE, NULL, NULL, NULL);
+    CPLPopErrorHandler();
+    if (!out)
+        st = gf_fail(GF_EIO, "map %s: GDAL cannot write it (%s)", path, gf_terrain_gdal_msg());
+done:
+    if (out)
+        GDALClose(out);
+    if (mem)
+        GDALClose(mem);
+    free(img);
+    return st;
+}
+
+/*------------------------------------------------------ probability maps --*/
+
+gf_status gf_probability_map(size_t n, const char *const *paths, double threshold, gf_raster *out)
+{
+    if (!out)
+        return gf_fail(GF_EINVAL, "probability map: null argument");
+    memset(out, 0, sizeof *out);
+    if (n < 1 || !paths)
+        return gf_fail(GF_EINVAL, "probability map: no member rasters (n = %zu)", n);
+    if (!isfinite(threshold))
+        return gf_fail(GF_ENONFINITE, "probability map: threshold %g is not a finite number", threshold);
+    gf_status st = GF_SUCCESS;
+    unsigned *count = NULL;
+    unsigned char *seen = NULL;
+    for (size_t m = 0; m < n; ++m) {
+        gf_raster r;
+        if ((st = gf_raster_read(paths[m], &r))) {
+            char why[512];
+            snprintf(why, sizeof why, "%s", gf_error_detail());
+            st = gf_fail(st, "probability map: member %zu of %zu: %s", m + 1, n, why);
+            break;
+        }
+        const size_t np = (size_t)r.nx * (size_t)r.ny;
+        if (m == 0) {
+            *out = r;   /* the grid and CRS of the first member; z becomes the probability */
+            count = calloc(np, sizeof *count);
+            seen = calloc(np, 1);
+            if (!count || !seen) {
+                st = gf_fail(GF_ENOMEM, "probability map: out of memory for %d x %d cells", r.nx, r.ny);
+                break;
+            }
+        } else if (!gf_raster_same_grid(out, &r)) {
+            st = gf_fail(GF_EDOM,
+                         "probability map: raster %s (member %zu) is %d x %d cells, origin (%.10g, %.10g),"
+                         " pixel %.10g; the first member %s is %d x %d, origin (%.10g, %.10g), pixel %.10g:"
+                         " every member must be on one grid",
+                         paths[m], m + 1, r.nx, r.ny, r.gt[0], r.gt[3], r.gt[1], paths[0], out->nx, out->ny,
+                         out->gt[0], out->gt[3], out->gt[1]);
+            gf_raster_free(&r);
+            break;
+        }
+        for (size_t i = 0; i < np; ++i) {
+            if (isnan(r.z[i]))
+                continue;
+            seen[i] = 1;
+            count[i] += r.z[i] > threshold;
+        }
+        if (m > 0)
+            gf_raster_free(&r);
+    }
+    if (!st) {
+        const size_t np = (size_t)out->nx * (size_t)out->ny;
+        out->n_valid = 0;
+        for (size_t i = 0; i < np; ++i) {
+            out->z[i] = seen[i] ? (double)count[i] / (double)n : NAN;
+            out->n_valid += seen[i];
+        }
+    } else
+        gf_raster_free(out);
+    free(count);
+    free(seen);
+    return st;
+}
+
+gf_status gf_raster_contours(const char *geojson, const char *xy_path, const gf_raster *grid,
+                             const double *values, size_t nlev, const double *levels)
+{
+    gf_terrain_gdal_init();
+    if (!grid || !values || nlev < 1 || !levels)
+        return gf_fail(GF_EINVAL, "contours: no grid, values or levels");
+    for (size_t k = 0; k < nlev; ++k)
+        if (!isfinite(levels[k]))
+            return gf_fail(GF_ENONFINITE, "contours: level %zu is %g, not a finite number", k, levels[k]);
+    const size_t np = (size_t)grid->nx * (size_t)grid->ny;
+    const double nd = -9999.0;
+    double *v = malloc(np * sizeof *v);
+    if (!v)
+        return gf_fail(GF_ENOMEM, "contours: out of memory");
+    for (size_t i = 0; i < np; ++i)
+        v[i] = isnan(values[i]) ? nd : values[i];
+    GDALDatasetH mem = NULL, vmem = NULL, out = NULL;
+    GDALRasterBandH b = NULL;
+    OGRLayerH ml = NULL;
+    OGRSpatialReferenceH srs = NULL;
+    FILE *xy = NULL;
+    const char *what = geojson ? geojson : xy_path ? xy_path : "(none)";
+    GDALDriverH gj = GDALGetDriverByName("GeoJSON");
+    gf_status st = band_and_layer("contours", what, grid, v, GDT_Float64, "contours", wkbLineString, &mem, &b, &vmem,
+                                  &ml, &srs);
+    if (st)
+        goto done;
+    OGRFieldDefnH fid = OGR_Fld_Create("id", OFTInteger), fl = OGR_Fld_Create("level", OFTReal);
+    OGR_L_CreateField(ml, fid, TRUE);
+    OGR_L_CreateField(ml, fl, TRUE);
+    OGR_Fld_Destroy(fid);
+    OGR_Fld_Destroy(fl);
+    if (GDALContourGenerate(b, 0.0, 0.0, (int)nlev, (double *)levels, TRUE, nd, ml, 0, 1, NULL, NULL) != CE_None) {
+        st = gf_fail(GF_EIO, "contours %s: contouring failed (%s)", what, gf_terrain_gdal_msg());
+        goto done;
+    }
+    if (xy_path && !(xy = fopen(xy_path, "w"))) {
+        st = gf_fail(GF_EIO, "contours %s: cannot write it", xy_path);
+        goto done;
+    }
+    if (xy)
+        fprintf(xy, "# contour lines: x y level (the grid's coordinates), one block per line\n");
+    OGRLayerH ol = NULL;
+    if (geojson) {
+        unlink(geojson);
+        CPLPushErrorHandler(CPLQuietErrorHandler);
+        out = GDALCreate(gj, geojson, 0, 0, 0, GDT_Unknown, NULL);
+        CPLPopErrorHandler();
+        if (!out) {
+            st = gf_fail(GF_EIO, "contours %s: GDAL cannot write it (%s)", geojson, gf_terrain_gdal_msg());
+            goto done;
+        }
+        ol = GDALDatasetCreateLayer(out, "contours", srs, wkbLineString, srs ? rfc7946 : NULL);
+        OGRFieldDefnH f1 = OGR_Fld_Create("level", OFTReal);
+        OGR_L_CreateField(ol, f1, TRUE);
+        OGR_Fld_Destroy(f1);
+    }
+    OGR_L_ResetReading(ml);
+    OGRFeatureH f;
+    while ((f = OGR_L_GetNextFeature(ml)) != NULL) {
+        OGRGeometryH geom = OGR_F_GetGeometryRef(f);
+        const double level = OGR_F_GetFieldAsDouble(f, 1);
+        if (xy && geom) {
+            const int npt = OGR_G_GetPointCount(geom);
+            for (int i = 0; i < npt; ++i)
+                fprintf(xy, "%.3f %.3f %.6g\n", OGR_G_GetX(geom, i), OGR_G_GetY(geom, i), level);
+            fprintf(xy, "\n");
+        }
+        if (ol) {
+            OGRFeatureH g = OGR_F_Create(OGR_L_GetLayerDefn(ol));
+            OGR_F_SetGeometry(g, geom);
+            OGR_F_SetFieldDouble(g, 0, level);
+            const OGRErr e = OGR_L_CreateFeature(ol, g);
+            OGR_F_Destroy(g);
+            if (e != OGRERR_NONE) {
+                OGR_F_Destroy(f);
+                st = gf_fail(GF_EIO, "contours %s: writing a line failed (%s)", geojson, gf_terrain_gdal_msg());
+                goto done;
+            }
+        }
+        OGR_F_Destroy(f);
+    }
+done:
+    if (xy && fclose(xy) != 0 && !st)
+        st = gf_fail(GF_EIO, "contours %s: writing failed", xy_path);
+    close_band_and_layer(out, vmem, mem, srs);
+    free(v);
+    return st;
+}
