@@ -686,6 +686,98 @@ static void energy_line_rejects_bad_input(void **state)
     assert_close(r.s_alpha, 25.0, 1e-12);
 }
 
+/* the energy-line sums of hand-made faces: an unlisted face does not
+ * count, a film below h_dry only in the volume; the horizontal speed is the part normal to gravity,
+ * whichever way gravity points */
+static void path_moments_of_hand_made_faces(void **state)
+{
+    (void)state;
+    const double area[3] = {2.0, 3.0, 5.0};
+    const double centre[9] = {1, 2, 3, -4, 0, 10, 7, 7, 7};
+    const double h[3] = {0.5, 2.0, 1e-9};
+    /* face 0: u = (2, 0, -2) (|u|^2 8, horizontal 2); face 1: u = (0, 3, 4)
+     * (|u|^2 25, horizontal 3); face 2 dry */
+    const double mom[9] = {1, 0, -1, 0, 6, 8, 1e3, 1e3, 1e3};
+    const double g[3] = {0, 0, -9.81};
+    double out[6];
+    gf_path_moments(3, NULL, area, centre, h, mom, 1e-6, g, out);
+    /* the film of face 2 counts in the volume and its moments, not in the speeds */
+    assert_close(out[0], 2 * 0.5 + 3 * 2.0 + 5e-9, 1e-14);
+    assert_close(out[1], 1.0 * 1 + 6.0 * -4 + 5e-9 * 7, 1e-14);
+    assert_close(out[2], 1.0 * 2 + 6.0 * 0 + 5e-9 * 7, 1e-14);
+    assert_close(out[3], 1.0 * 3 + 6.0 * 10 + 5e-9 * 7, 1e-14);
+    assert_close(out[4], 1.0 * 8 + 6.0 * 25, 1e-12);
+    assert_close(out[5], 1.0 * 2 + 6.0 * 3, 1e-12);
+    /* gravity along -y: the horizontal part is (x, z) */
+    const double gy[3] = {0, -2.0, 0};
+    gf_path_moments(3, NULL, area, centre, h, mom, 1e-6, gy, out);
+    assert_close(out[5], 1.0 * sqrt(8.0) + 6.0 * 4, 1e-12);
+    /* only face 1 listed */
+    const int faces[1] = {1};
+    gf_path_moments(1, faces, area, centre, h, mom, 1e-6, g, out);
+    assert_close(out[0], 6.0, 1e-14);
+    assert_close(out[5], 18.0, 1e-12);
+}
+
+/* rotating back: a field that is itself the rotated image of a linear
+ * field comes back exactly (bilinear is exact for linear fields); 90 deg
+ * maps cell centres onto cell centres; outside and NaN give NaN */
+static void rotate_back_linear_field_and_quarter_turn(void **state)
+{
+    (void)state;
+    enum { NX = 21, NY = 17 };
+    const double gt[6] = {-52.5, 5.0, 0.0, 42.5, 0.0, -5.0}; /* centres x -50..50, y 40..-40 */
+    double v[NX * NY], out[NX * NY];
+    const double ang = 120.0, a = ang * 3.14159265358979323846 / 180.0, cx = 3.0, cy = -2.0;
+    /* the reference field f(p) = 2 + 0.3 x - 0.7 y; the run holds f(R^-1 (q)),
+     * R clockwise by ang about (cx, cy), so that out(p) = run(R p) = f(p) */
+    for (int r = 0; r < NY; ++r)
+        for (int c = 0; c < NX; ++c) {
+            const double x = gt[0] + (c + 0.5) * gt[1] - cx, y = gt[3] + (r + 0.5) * gt[5] - cy;
+            /* R^-1: anticlockwise by ang */
+            const double xi = cx + x * cos(a) - y * sin(a), yi = cy + x * sin(a) + y * cos(a);
+            v[r * NX + c] = 2 + 0.3 * xi - 0.7 * yi;
+        }
+    assert_int_equal(gf_grid_rotate_back(NX, NY, gt, v, ang, cx, cy, out), GF_SUCCESS);
+    int inside = 0, outside = 0;
+    for (int r = 0; r < NY; ++r)
+        for (int c = 0; c < NX; ++c) {
+            const double x = gt[0] + (c + 0.5) * gt[1], y = gt[3] + (r + 0.5) * gt[5];
+            const double o = out[r * NX + c];
+            if (isnan(o)) {
+                ++outside;
+                continue;
+            }
+            ++inside;
+            assert_close(o, 2 + 0.3 * x - 0.7 * y, 1e-11);
+        }
+    /* the corners of this 100 m x 80 m grid rotate outside it */
+    assert_true(inside > 100);
+    assert_true(outside > 50);
+    /* a quarter turn about a cell centre: cell (c, r) takes the value of
+     * the cell a quarter turn clockwise away, exactly */
+    const double g2[6] = {-2.5, 1.0, 0.0, 2.5, 0.0, -1.0}; /* 5 x 5, centres -2..2 */
+    double w[25], o2[25];
+    for (int k = 0; k < 25; ++k)
+        w[k] = k;
+    w[0] = NAN;
+    assert_int_equal(gf_grid_rotate_back(5, 5, g2, w, 90.0, 0.0, 0.0, o2), GF_SUCCESS);
+    /* p = (x, y) -> R p = (y, -x): centre (x, y) at col x + 2, row 2 - y */
+    for (int r = 0; r < 5; ++r)
+        for (int c = 0; c < 5; ++c) {
+            const int x = c - 2, y = 2 - r, xr = y, yr = -x;
+            const int k = (2 - yr) * 5 + (xr + 2);
+            if (k == 0)
+                assert_true(isnan(o2[r * 5 + c]));
+            else
+                assert_close(o2[r * 5 + c], (double)k, 1e-12);
+        }
+    const double bad[6] = {-2.5, 1.0, 0.1, 2.5, 0.0, -1.0};
+    assert_int_equal(gf_grid_rotate_back(5, 5, bad, w, 90.0, 0.0, 0.0, o2), GF_EDOM);
+    assert_int_equal(gf_grid_rotate_back(5, 5, g2, w, NAN, 0.0, 0.0, o2), GF_EDOM);
+    assert_int_equal(gf_grid_rotate_back(0, 5, g2, w, 90.0, 0.0, 0.0, o2), GF_EINVAL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -707,6 +799,8 @@ int main(void)
         cmocka_unit_test(energy_line_short_runout_extrapolates_the_last_slope),
         cmocka_unit_test(energy_line_long_runout_crosses_the_alpha_line),
         cmocka_unit_test(energy_line_rejects_bad_input),
+        cmocka_unit_test(path_moments_of_hand_made_faces),
+        cmocka_unit_test(rotate_back_linear_field_and_quarter_turn),
     };
     return gf_run_tests("standard_tests", tests, NULL, NULL);
 }

@@ -38,7 +38,9 @@ Description
     With controlDict hazardMaps yes (and peakFields yes) a terrain run ends
     with its hazard maps, the files gfHazardMaps would write afterwards
     (hazardMaps.H, opened through hazardMapsWriter.H), without loading the
-    meshes again; a parallel run skips them with a message.
+    meshes again; a parallel run skips them with a message.  With controlDict
+    energyLine yes the run writes its mass-averaged path for the energy-line
+    test (energyLine.H).
 
 Usage
     faGranularFlowFoam [-parallel] [-keywords] [-version]
@@ -67,6 +69,7 @@ Usage
 #include "keepFreedMemory.H"
 #include "clipRoundOff.H"
 #include "repeatStep.H"
+#include "energyLine.H"
 
 int main(int argc, char *argv[])
 {

@@ -379,6 +379,10 @@ std::vector<table> makeTables()
             {"stopFraction", "scalar", "0.01", "(0, 1)", "", "explicit",
              "stopCriterion kineticEnergy: the fraction of the peak kinetic energy below which the"
              " run ends (AvaFrame: 1 %)"},
+            {"energyLine", "switch", "no", "", "", "",
+             "write the mass-averaged path of the energy-line test at the start and every written time"
+             " (postProcessing/energyLine: centre of mass, mean |Us|^2, mean horizontal path length;"
+             " doc/theory/standard-tests.md section 4); needs a constant mass (no inflow, no mass exchange)"},
         }
     });
 
@@ -531,11 +535,14 @@ std::vector<table> makeTables()
         " doc/theory/standard-tests.md).",
         true, "",
         {
-            {"test", "word", "required", "similarity | damBreak | flatPlane", "", "",
+            {"test", "word", "required", "similarity | damBreak | flatPlane | energyLine | rotation", "", "",
              "the test: the similarity solution (Hutter et al. 1993), the dam break on an inclined"
-             " Coulomb plane (Faccanoni & Mangeney 2013) or the flat-plane pile"},
+             " Coulomb plane (Faccanoni & Mangeney 2013), the flat-plane pile, the energy line on a"
+             " parabolic slope or the rotation test in a bowl"},
             {"cellSize", "scalar", "required", "[0.1, 20]", "m", "",
              "cell size of the output grid and of the mesh (the DEM's lower-left cell centre kept)"},
+            {"angle", "scalar", "0", "[0, 360]", "deg", "",
+             "rotation: the release at (-350, 0) m rotated clockwise by this angle about the bowl's centre"},
         }
     });
 

@@ -180,6 +180,39 @@ typedef struct gf_energy_line {
 gf_status gf_energy_line_analyse(const double *s, const double *z, const double *v2, size_t n,
                                  double mu, double g, double csz, gf_energy_line *out);
 
+/* The mass-weighted sums of the energy-line test over faces (section 4 of
+ * doc/theory/standard-tests.md), the faces listed in faces[0, n) or, with
+ * faces NULL, faces 0..n-1; a face counts where h > 0, its speed only where
+ * h > h_dry (a thinner film has no velocity in the kernel):
+ *   out[0] = sum A h                 (volume; times rho: the mass)
+ *   out[1..3] = sum A h x            (x the face centre: the centre of mass)
+ *   out[4] = sum A |m|^2 / h         (= sum A h |u|^2, m = h u)
+ *   out[5] = sum A |m - (m.e) e|     (= sum A h |u_hor|, e = g/|g|)
+ * out[5] is the rate of change of sum A h sigma for the path-length tracer
+ * d(h sigma)/dt + div(h sigma u) = h |u_hor| (the flux sums to 0 over a
+ * closed domain), so with the mass constant the mass-averaged path length
+ * is s(t) = (integral_0^t out[5] dt) / out[0]: the tracer's mean without the
+ * tracer.  area [.], centre [3 .], h [.], mom [3 .] indexed by face; g any
+ * non-zero gravity vector. */
+void gf_path_moments(size_t n, const int *faces, const double *area, const double *centre,
+                     const double *h, const double *mom, double h_dry, const double g[3], double out[6]);
+
+/* ---- 5. rotation -------------------------------------------------------------- */
+
+/* Rotate a run back onto the reference's orientation: the run was released
+ * at the reference's position rotated clockwise by angle [deg] about
+ * (cx, cy), so out(p) = v(R p), R the clockwise rotation by angle about
+ * (cx, cy), bilinear between the four cell centres around R p.  Grid: nx
+ * columns, ny rows, row-major, GDAL's north-up geotransform gt (cell
+ * (col, row) centred at gt[0] + (col + 1/2) gt[1], gt[3] + (row + 1/2) gt[5];
+ * gt[2] = gt[4] = 0).  out is NaN where R p falls outside the cell centres
+ * or one of its four values with a non-zero weight is NaN ("points
+ * outside get no value").
+ * GF_EINVAL for null pointers or an empty grid, GF_EDOM for a rotated or
+ * degenerate geotransform or a non-finite angle. */
+gf_status gf_grid_rotate_back(int nx, int ny, const double gt[6], const double *v, double angle_deg, double cx,
+                              double cy, double *out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -266,6 +266,12 @@ void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_
  * set (the other faces are dry). */
 void gf_surface_moments(const gf_surface *s, double out[4]);
 
+/* The energy-line sums of gf_path_moments (granflow/standard_tests.h) over
+ * the owned faces with the kernel's state and gravity: volume, its first
+ * moments, sum A h |u|^2 and sum A h |u_hor|; valid before the first step
+ * too. */
+void gf_surface_path_moments(const gf_surface *s, double out[6]);
+
 /* Volume sum_f A_f h_f of the owned faces. */
 double gf_surface_volume(const gf_surface *s);
 
@@ -368,6 +374,38 @@ void gf_surface_get_stats(const gf_surface *s, gf_surface_stats *st);
  * condition: the flow has stopped when E falls below a fraction of its
  * running peak (AvaFrame: 1 %). */
 double gf_surface_kinetic_energy(const gf_surface *s);
+
+/* The faces still moving (the report at the end of a run, when the stop
+ * criterion on the kinetic energy has ended it or endTime has): over the
+ * faces with h > h_dry (thinner films have no velocity in the scheme), with
+ * |u| = |m|/h,
+ *   n, volume        how many are faster than `speed` (|u| > speed) and
+ *                    their volume sum A h [m^3];
+ *   max_speed,       the largest |u| of them all [m/s] (the fastest wet
+ *   max_face,        face, faster than `speed` or not), its face (the first
+ *   max_centre       of equal speeds in face order) and centre; 0, -1 and
+ *                    (0, 0, 0) when no face is wet.
+ * In parallel, sum n and volume over the ranks and take the fastest face of
+ * the rank with the largest max_speed. */
+typedef struct gf_moving_faces {
+    size_t n;
+    double volume;
+    double max_speed;
+    long max_face;
+    double max_centre[3];
+} gf_moving_faces;
+
+/* gf_moving_faces of the arrays of n faces: area [n], centre [3n], h [n],
+ * momentum m = h u [3n] (the implicit scheme's fields give h Us), h_dry the
+ * dry threshold.  GF_EDOM / GF_ENONFINITE (detail names the argument) for a
+ * speed or h_dry < 0 or not finite, GF_EINVAL for a null array with n > 0. */
+gf_status gf_moving_faces_eval(size_t n, const double *area, const double *centre, const double *h,
+                               const double *m, double h_dry, double speed, gf_moving_faces *out);
+
+/* gf_moving_faces of the owned faces with the kernel's state and h_dry
+ * (the active set after a step, every owned face before the first: the other
+ * faces are dry); the same errors. */
+gf_status gf_surface_moving_faces(const gf_surface *s, double speed, gf_moving_faces *out);
 
 #ifdef __cplusplus
 }

@@ -622,3 +622,73 @@ gf_status gf_energy_line_analyse(const double *s, const double *z, const double 
     *out = r;
     return GF_SUCCESS;
 }
+
+void gf_path_moments(size_t n, const int *faces, const double *area, const double *centre,
+                     const double *h, const double *mom, double h_dry, const double g[3], double out[6])
+{
+    const double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    const double e[3] = {g[0] / gn, g[1] / gn, g[2] / gn};
+    for (int k = 0; k < 6; ++k)
+        out[k] = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        const size_t f = faces ? (size_t)faces[i] : i;
+        if (!(h[f] > 0.0))
+            continue;
+        const double *m = mom + 3 * f, *x = centre + 3 * f, a = area[f];
+        const double v = a * h[f];
+        out[0] += v;
+        out[1] += v * x[0], out[2] += v * x[1], out[3] += v * x[2];
+        if (!(h[f] > h_dry))
+            continue; /* a film without velocity (the kernel's u = 0 there) */
+        const double me = m[0] * e[0] + m[1] * e[1] + m[2] * e[2];
+        const double mh[3] = {m[0] - me * e[0], m[1] - me * e[1], m[2] - me * e[2]};
+        out[4] += a * (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]) / h[f];
+        out[5] += a * sqrt(mh[0] * mh[0] + mh[1] * mh[1] + mh[2] * mh[2]);
+    }
+}
+
+gf_status gf_grid_rotate_back(int nx, int ny, const double gt[6], const double *v, double angle_deg, double cx,
+                              double cy, double *out)
+{
+    if (!gt || !v || !out || nx < 1 || ny < 1)
+        return gf_fail(GF_EINVAL, "gf_grid_rotate_back: null pointer or empty grid (%d x %d)", nx, ny);
+    if (gt[2] != 0.0 || gt[4] != 0.0 || !(fabs(gt[1]) > 0.0) || !(fabs(gt[5]) > 0.0) || !isfinite(gt[1]) ||
+        !isfinite(gt[5]) || !isfinite(gt[0]) || !isfinite(gt[3]))
+        return gf_fail(GF_EDOM, "gf_grid_rotate_back: the grid is not north-up with finite cells");
+    if (!isfinite(angle_deg) || !isfinite(cx) || !isfinite(cy))
+        return gf_fail(GF_EDOM, "gf_grid_rotate_back: angle %g deg or centre (%g, %g) not finite", angle_deg, cx,
+                       cy);
+    const double a = angle_deg * (3.14159265358979323846 / 180.0), c = cos(a), s = sin(a);
+    for (int row = 0; row < ny; ++row)
+        for (int col = 0; col < nx; ++col) {
+            const double x = gt[0] + (col + 0.5) * gt[1] - cx, y = gt[3] + (row + 0.5) * gt[5] - cy;
+            /* clockwise by a: (x, y) -> (x cos a + y sin a, -x sin a + y cos a) */
+            const double xr = cx + x * c + y * s, yr = cy - x * s + y * c;
+            double fc = (xr - gt[0]) / gt[1] - 0.5, fr = (yr - gt[3]) / gt[5] - 0.5;
+            /* on a centre line to round-off (a quarter turn): on it, so that
+             * the neighbour across takes no weight (nor its NaN) */
+            if (fabs(fc - round(fc)) < 1e-9)
+                fc = round(fc);
+            if (fabs(fr - round(fr)) < 1e-9)
+                fr = round(fr);
+            double *o = out + (size_t)row * (size_t)nx + (size_t)col;
+            /* within half a millionth of a cell of the last centre counts as on it */
+            const double eps = 1e-6;
+            if (fc < -eps || fr < -eps || fc > nx - 1 + eps || fr > ny - 1 + eps) {
+                *o = NAN;
+                continue;
+            }
+            int c0 = (int)floor(fc), r0 = (int)floor(fr);
+            c0 = c0 < 0 ? 0 : c0 > nx - 2 ? (nx > 1 ? nx - 2 : 0) : c0;
+            r0 = r0 < 0 ? 0 : r0 > ny - 2 ? (ny > 1 ? ny - 2 : 0) : r0;
+            const int c1 = nx > 1 ? c0 + 1 : c0, r1 = ny > 1 ? r0 + 1 : r0;
+            const double tc = nx > 1 ? fc - c0 : 0.0, tr = ny > 1 ? fr - r0 : 0.0;
+            const double v00 = v[(size_t)r0 * nx + c0], v01 = v[(size_t)r0 * nx + c1];
+            const double v10 = v[(size_t)r1 * nx + c0], v11 = v[(size_t)r1 * nx + c1];
+            /* a neighbour of weight 0 does not count (its NaN neither) */
+            const double w00 = (1 - tr) * (1 - tc), w01 = (1 - tr) * tc, w10 = tr * (1 - tc), w11 = tr * tc;
+            *o = (w00 > 0 ? w00 * v00 : 0.0) + (w01 > 0 ? w01 * v01 : 0.0) + (w10 > 0 ? w10 * v10 : 0.0) +
+                 (w11 > 0 ? w11 * v11 : 0.0);
+        }
+    return GF_SUCCESS;
+}
