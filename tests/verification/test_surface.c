@@ -483,6 +483,154 @@ static void kinetic_energy_is_half_h_u2_area(void **state)
     free(h);
 }
 
+/* The faces still moving (gf_surface_moving_faces, the report at the end of
+ * a run): on the 20 deg plane, a layer with a speed growing along the slope
+ * by 0.1 m/s per column (0 .. 5.9 m/s; a diagonal component across) and
+ * dry patches: the count of faces faster than 1 m/s, their volume sum A h,
+ * the fastest face and its centre are those of a count over the arrays,
+ * before the first step and with the active set built; a film at h_dry with
+ * a large momentum is not counted (thinner films have no velocity);
+ * "faster than" is strict (a face at exactly 1 m/s is not counted at 1 m/s,
+ * is at 0.999); equal speeds give the lowest face; no wet face gives 0 faces
+ * and face -1; while a pile slides, the kernel's active-set sums equal
+ * gf_moving_faces_eval over every face of its h and momentum; a negative or
+ * non-finite threshold is an error. */
+/* the moving faces counted here, independently: n, volume, fastest speed and face */
+static void expect_moving(size_t nf, const double *area, const double *h, const double *m, double h_dry,
+                          double speed, size_t *n, double *vol, double *umax, long *fmax)
+{
+    *n = 0, *vol = 0.0, *umax = 0.0, *fmax = -1;
+    for (size_t f = 0; f < nf; ++f) {
+        if (!(h[f] > h_dry))
+            continue;
+        const double u = sqrt(m[3 * f] * m[3 * f] + m[3 * f + 1] * m[3 * f + 1] + m[3 * f + 2] * m[3 * f + 2]) / h[f];
+        if (u > speed)
+            ++*n, *vol += area[f] * h[f];
+        if (*fmax < 0 || u > *umax)
+            *umax = u, *fmax = (long)f;
+    }
+}
+
+static void moving_faces_counted_and_located(void **state)
+{
+    (void)state;
+    double zeta = 20 * GF_DEG;
+    const size_t nx = 60, ny = 20;
+    strip_mesh *sm = strip_mesh_new(nx, ny, 0, 30, -5, 5, const_zeta, &zeta, WALLS);
+    gf_surface_config c;
+    gf_surface_config_default(&c);
+    coulomb(&c, 30);
+    const size_t nf = sm->m.n_faces;
+    const double down[3] = {cos(zeta), 0.0, -sin(zeta)}, across[3] = {0.0, 1.0, 0.0};
+    double *h = malloc(nf * sizeof *h), *m = malloc(3 * nf * sizeof *m);
+    for (size_t f = 0; f < nf; ++f) {
+        const size_t i = f % nx, j = f / nx;
+        const double a = 0.1 * (double)i, b = 0.05 * (double)j; /* |u| = sqrt(a^2 + b^2) */
+        h[f] = (i + j) % 7 == 3 ? 0.0 : 0.2 + 0.01 * (double)j;
+        if (i == nx - 1 && j == ny - 1)
+            h[f] = 0.5 * c.h_dry; /* a film on the fastest column: not counted, whatever its momentum */
+        for (int k = 0; k < 3; ++k)
+            m[3 * f + k] = (h[f] > 0.0 ? h[f] : 1.0) * (a * down[k] + b * across[k]);
+    }
+    /* over the arrays as given: the film's momentum would make it the fastest */
+    size_t n_exp;
+    double vol_exp, umax;
+    long fmax_exp;
+    expect_moving(nf, sm->area, h, m, c.h_dry, 1.0, &n_exp, &vol_exp, &umax, &fmax_exp);
+    assert_true(fmax_exp != (long)(nf - 1));
+    gf_moving_faces ev;
+    assert_int_equal(gf_moving_faces_eval(nf, sm->area, sm->centre, h, m, c.h_dry, 1.0, &ev), GF_SUCCESS);
+    assert_int_equal(ev.n, n_exp);
+    assert_close(ev.volume, vol_exp, 1e-13 * vol_exp);
+    assert_true(ev.max_speed == umax && ev.max_face == fmax_exp);
+    /* the kernel's state (its momentum projected onto the faces' planes) */
+    for (int built = 0; built < 2; ++built) {
+        gf_surface *s = make_solver(sm, &c);
+        assert_int_equal(gf_surface_set_state(s, h, m), GF_SUCCESS);
+        if (built) {
+            double dt;
+            assert_int_equal(gf_surface_max_dt(s, &dt), GF_SUCCESS); /* builds the active set */
+        }
+        expect_moving(nf, sm->area, gf_surface_h(s), gf_surface_momentum(s), c.h_dry, 1.0, &n_exp, &vol_exp, &umax,
+                      &fmax_exp);
+        gf_moving_faces mv;
+        assert_int_equal(gf_surface_moving_faces(s, 1.0, &mv), GF_SUCCESS);
+        printf("  layer, %s: %zu faces faster than 1 m/s (expected %zu), volume %.6g m3 (%.6g), fastest %.6g m/s at"
+               " face %ld (%ld)\n",
+               built ? "active set built" : "before the first step", mv.n, n_exp, mv.volume, vol_exp, mv.max_speed,
+               mv.max_face, fmax_exp);
+        assert_true(n_exp > 0 && n_exp < nf);
+        assert_int_equal(mv.n, n_exp);
+        assert_close(mv.volume, vol_exp, 1e-13 * vol_exp);
+        assert_true(mv.max_speed == umax && mv.max_face == fmax_exp);
+        for (int k = 0; k < 3; ++k)
+            assert_true(mv.max_centre[k] == sm->centre[3 * fmax_exp + k]);
+        gf_surface_free(s);
+    }
+
+    /* strict threshold, ties, nothing wet */
+    for (size_t f = 0; f < nf; ++f) {
+        h[f] = 0.5;
+        for (int k = 0; k < 3; ++k)
+            m[3 * f + k] = 0.5 * 0.25 * across[k];
+    }
+    const size_t f1 = 7 * nx + 13, f2 = 2 * nx + 40; /* the same largest speed, f2 < f1 */
+    for (int k = 0; k < 3; ++k)
+        m[3 * f1 + k] = m[3 * f2 + k] = 0.5 * across[k]; /* |u| = 1 m/s exactly */
+    for (int built = 0; built < 2; ++built) {
+        gf_surface *s = make_solver(sm, &c);
+        assert_int_equal(gf_surface_set_state(s, h, m), GF_SUCCESS);
+        if (built) {
+            double dt;
+            assert_int_equal(gf_surface_max_dt(s, &dt), GF_SUCCESS);
+        }
+        gf_moving_faces mv;
+        assert_int_equal(gf_surface_moving_faces(s, 1.0, &mv), GF_SUCCESS);
+        assert_int_equal(mv.n, 0);
+        assert_true(mv.max_speed == 1.0);
+        assert_int_equal(mv.max_face, (long)f2);
+        assert_int_equal(gf_surface_moving_faces(s, 0.999, &mv), GF_SUCCESS);
+        assert_int_equal(mv.n, 2);
+        assert_close(mv.volume, 0.5 * (sm->area[f1] + sm->area[f2]), 1e-15);
+        assert_int_equal(gf_surface_moving_faces(s, -0.1, &mv), GF_EDOM);
+        assert_int_equal(gf_surface_moving_faces(s, NAN, &mv), GF_ENONFINITE);
+        gf_surface_free(s);
+    }
+    memset(h, 0, nf * sizeof *h);
+    gf_moving_faces mv;
+    assert_int_equal(gf_moving_faces_eval(nf, sm->area, sm->centre, h, m, c.h_dry, 1.0, &mv), GF_SUCCESS);
+    assert_true(mv.n == 0 && mv.volume == 0.0 && mv.max_speed == 0.0 && mv.max_face == -1);
+    strip_mesh_free(sm);
+    free(h), free(m);
+
+    /* a sliding pile: the active set's sums are those over every face */
+    double *h0;
+    gf_surface *s = sliding_pile(&sm, &c, &h0);
+    size_t seen = 0;
+    for (int n = 0; n < 200; ++n) {
+        double dt;
+        assert_int_equal(gf_surface_max_dt(s, &dt), GF_SUCCESS);
+        assert_int_equal(gf_surface_step(s, dt), GF_SUCCESS);
+        if (n % 20 != 19)
+            continue;
+        gf_moving_faces a, b;
+        assert_int_equal(gf_surface_moving_faces(s, 1.0, &a), GF_SUCCESS);
+        assert_int_equal(gf_moving_faces_eval(sm->m.n_faces, sm->area, sm->centre, gf_surface_h(s),
+                                              gf_surface_momentum(s), c.h_dry, 1.0, &b),
+                         GF_SUCCESS);
+        assert_int_equal(a.n, b.n);
+        assert_close(a.volume, b.volume, 1e-13 * b.volume);
+        assert_true(a.max_speed == b.max_speed && a.max_face == b.max_face);
+        seen += a.n;
+    }
+    printf("  sliding pile, 200 steps: the active set's moving faces = the count over every face (%zu faces"
+           " faster than 1 m/s over the 10 checks)\n", seen);
+    assert_true(seen > 0);
+    gf_surface_free(s);
+    strip_mesh_free(sm);
+    free(h0);
+}
+
 /* A restart: a second solver given the first one's h, momentum and normal
  * acceleration (gf_surface_restore) after 150 steps of a pile sliding onto the curved bed
  * (40 -> 10 deg, Coulomb 20 deg) continues it exactly: the next 150 steps at
@@ -729,6 +877,7 @@ int main(void)
         cmocka_unit_test(mass_conserved_in_a_closed_box),
         cmocka_unit_test(peak_fields_are_the_maxima_over_all_steps),
         cmocka_unit_test(kinetic_energy_is_half_h_u2_area),
+        cmocka_unit_test(moving_faces_counted_and_located),
         cmocka_unit_test(restart_continues_the_run_exactly),
         cmocka_unit_test(dry_fronts_against_exact),
         cmocka_unit_test(resolved_front_within_three_cells),

@@ -64,6 +64,7 @@ Usage
 #include "cpuSections.H"
 #include "runProfile.H"
 #include "hazardMapsWriter.H"
+#include "stopReport.H"
 
 #include "keyword.H"
 #include "keepFreedMemory.H"

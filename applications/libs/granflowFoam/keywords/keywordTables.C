@@ -379,6 +379,11 @@ std::vector<table> makeTables()
             {"stopFraction", "scalar", "0.01", "(0, 1)", "", "explicit",
              "stopCriterion kineticEnergy: the fraction of the peak kinetic energy below which the"
              " run ends (AvaFrame: 1 %)"},
+            {"stopReportSpeed", "scalar", "1", ">= 0", "m/s", "",
+             "the report at the end of the run (the stop or endTime; the log, <time>/uniform/granflowStopReport"
+             " and the hazard maps' summary.dat): the faces with h > hMin faster than this, their volume, the"
+             " fastest face and where; a warning when stopCriterion kineticEnergy stopped the run with such"
+             " faces, or when endTime ended it with the criterion on"},
             {"energyLine", "switch", "no", "", "", "",
              "write the mass-averaged path of the energy-line test at the start and every written time"
              " (postProcessing/energyLine: centre of mass, mean |Us|^2, mean horizontal path length;"
@@ -421,6 +426,35 @@ std::vector<table> makeTables()
             {"type", "word", "required", "wall | outflow | symmetry | inflow", "", "", "its boundary type"},
             {"out", "scalar", "required", "", "m3", "", "net volume out through the patch so far"},
             {"lastStep", "scalar", "required", "", "m3", "", "volume out in the last step (BDF2 history)"},
+        }
+    });
+
+    // ---- <time>/uniform/granflowStopReport ---------------------------------------
+    T.push_back
+    ({
+        "granflowStopReport", "<time>/uniform/granflowStopReport", "", "gfHazardMaps (summary.dat)",
+        "Written by faGranularFlowFoam at the end of a run into its last time (when that time is written):"
+        " the faces still moving (applications/utilities/common/stopReport.H; libgranflow's"
+        " gf_surface_moving_faces).",
+        true, "",
+        {
+            {"time", "scalar", "required", "", "s", "", "the end of the run"},
+            {"stopCriterion", "word", "required", "none | kineticEnergy", "", "", "controlDict stopCriterion"},
+            {"stopped", "switch", "required", "", "", "", "the stop criterion ended the run (no: endTime did)"},
+            {"endTime", "scalar", "required", "", "s", "", "controlDict endTime, the cap"},
+            {"stopFraction", "scalar", "required", "[0, 1)", "", "", "controlDict stopFraction"},
+            {"kineticEnergyPercent", "scalar", "required", "", "", "",
+             "the kinetic energy at the end in % of its peak (-1: stopCriterion none)"},
+            {"stopReportSpeed", "scalar", "required", ">= 0", "m/s", "", "controlDict stopReportSpeed"},
+            {"hMin", "scalar", "required", ">= 0", "m", "", "the dry threshold: faces with h > hMin count"},
+            {"movingFaces", "label", "required", ">= 0", "", "", "faces faster than stopReportSpeed"},
+            {"movingVolume", "scalar", "required", ">= 0", "m3", "", "their volume sum A h"},
+            {"volume", "scalar", "required", ">= 0", "m3", "", "the volume in the domain"},
+            {"maxSpeed", "scalar", "required", ">= 0", "m/s", "", "the largest |Us| of the faces with h > hMin"},
+            {"maxSpeedAt", "vector", "required", "", "m", "", "the centre of that face"},
+            {"georeferenced", "switch", "required", "", "", "",
+             "maxSpeedAt in the terrain's coordinates (constant/terrainProperties offset added); no: mesh"
+             " coordinates"},
         }
     });
 
