@@ -360,6 +360,67 @@ static void samosat_limits(void **state)
     assert_int_equal(gf_friction_set(&g, "B", 0.0), GF_EDOM);
 }
 
+/* samosATAuto (AvaFrame com1DFA: volClassSmall 25,000 m^3, volClassMedium
+ * 60,000 m^3): below 25,000 m^3 samosATSmall (mu 0.22), from it to below
+ * 60,000 m^3 samosATMedium (0.17), from 60,000 m^3 on samosAT (0.155), at
+ * and one ulp around both thresholds, and far from them; the sets differ in
+ * mu only (tau0 0, Rs0 0.222, kappa 0.43, R 0.05, B 4.13, AvaFrame's
+ * com1DFACfg.ini); a law initialised with a set evaluates as samosAT with
+ * that mu; no volume (0), a negative or non-finite one is an error. */
+static void samosat_auto_by_release_volume(void **state)
+{
+    (void)state;
+    assert_true(GF_SAMOSAT_VOL_SMALL == 25000.0 && GF_SAMOSAT_VOL_MEDIUM == 60000.0);
+    const struct {
+        double v;
+        const char *set;
+        double mu;
+    } cases[] = {
+        {1.0, "samosATSmall", 0.22},
+        {nextafter(25000.0, 0.0), "samosATSmall", 0.22},
+        {25000.0, "samosATMedium", 0.17},
+        {nextafter(25000.0, 1e9), "samosATMedium", 0.17},
+        {41000.0, "samosATMedium", 0.17},
+        {nextafter(60000.0, 0.0), "samosATMedium", 0.17},
+        {60000.0, "samosAT", 0.155},
+        {nextafter(60000.0, 1e9), "samosAT", 0.155},
+        {1e9, "samosAT", 0.155},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+        const gf_samosat_set *set = NULL;
+        assert_int_equal(gf_samosat_auto(cases[k].v, &set), GF_SUCCESS);
+        assert_non_null(set);
+        assert_string_equal(set->name, cases[k].set);
+        assert_true(set->mu == cases[k].mu);
+        assert_true(set->tau0 == 0.0 && set->Rs0 == 0.222 && set->kappa == 0.43 && set->R == 0.05 && set->B == 4.13);
+        /* the law of the set is samosAT with its mu */
+        gf_friction a, b;
+        assert_int_equal(gf_friction_init_samosat_set(&a, set), GF_SUCCESS);
+        assert_int_equal(gf_friction_init(&b, "samosAT"), GF_SUCCESS);
+        assert_int_equal(gf_friction_set(&b, "mu", cases[k].mu), GF_SUCCESS);
+        assert_ptr_equal(a.type, gf_friction_samosat);
+        const gf_friction_state st = {0.8, 3.0, 200 * 9.81 * 0.8 * cos(30 * GF_DEG), 200.0, 9.81};
+        gf_friction_result ra, rb;
+        assert_int_equal(gf_friction_eval(&a, &st, &ra), GF_SUCCESS);
+        assert_int_equal(gf_friction_eval(&b, &st, &rb), GF_SUCCESS);
+        assert_true(ra.tau == rb.tau && ra.nu == rb.nu);
+        double u0;
+        assert_int_equal(gf_friction_get(&a, "u0", &u0), GF_SUCCESS);
+        assert_true(u0 == 1e-4);
+    }
+    const gf_samosat_set *sets = gf_samosat_sets(), *set = NULL;
+    assert_string_equal(sets[0].name, "samosATSmall");
+    assert_string_equal(sets[1].name, "samosATMedium");
+    assert_string_equal(sets[2].name, "samosAT");
+    assert_null(sets[3].name);
+    assert_int_equal(gf_samosat_auto(0.0, &set), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "allowed > 0"));
+    assert_int_equal(gf_samosat_auto(-5.0, &set), GF_EDOM);
+    assert_int_equal(gf_samosat_auto(NAN, &set), GF_ENONFINITE);
+    assert_int_equal(gf_samosat_auto(INFINITY, &set), GF_ENONFINITE);
+    assert_int_equal(gf_samosat_auto(1.0, NULL), GF_EINVAL);
+}
+
 /* The four-lane samosAT solver of the explicit scheme gives each lane the
  * scalar solver's speed bit for bit, over the regimes of
  * implicit_speed_solves_backward_euler (thin and thick, yield stress,
@@ -418,6 +479,7 @@ int main(void)
         cmocka_unit_test(implicit_speed_solves_backward_euler),
         cmocka_unit_test(samosat_limits),
         cmocka_unit_test(samosat_four_lanes_equal_scalar),
+        cmocka_unit_test(samosat_auto_by_release_volume),
         cmocka_unit_test(unknown_law_lists_valid_names),
         cmocka_unit_test(bad_coefficients_name_key_and_range),
         cmocka_unit_test(bad_state_is_an_error_not_nan),

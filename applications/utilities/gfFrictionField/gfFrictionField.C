@@ -18,6 +18,7 @@ Usage
 #include "fvCFD.H"
 #include "faCFD.H"
 #include "timeSelector.H"
+#include "IFstream.H"
 #include "uniformDimensionedFields.H"
 #include "granularModel.H"
 #include "keyword.H"
@@ -54,13 +55,43 @@ int main(int argc, char *argv[])
             IOobject::NO_WRITE
         )
     );
+    // frictionLaw samosATAuto: the release volume that chooses the set, as
+    // the solver takes it - the run's initial volume (uniform/granflowMassBalance
+    // of the first selected time, written by the solver), else sum A h of
+    // that time's h
+    scalar releaseVolume = -1;
+    const granflow::keyword::table& props = granflow::keyword::get("granularProperties");
+    if
+    (
+        granflow::keyword::read<word>(granularProperties, props, "frictionLaw") == "samosATAuto"
+     && timeDirs.size()
+    )
+    {
+        const fileName mb(runTime.path()/timeDirs[0].name()/"uniform"/"granflowMassBalance");
+        IOobject hio("h", timeDirs[0].name(), mesh, IOobject::MUST_READ);
+        if (isFile(mb))
+        {
+            IFstream is(mb);
+            const dictionary d(is);
+            releaseVolume = granflow::keyword::read<scalar>
+            (
+                d, granflow::keyword::get("granflowMassBalance"), "initialVolume"
+            );
+        }
+        else if (hio.typeHeaderOk<areaScalarField>(true))
+        {
+            releaseVolume = gSum(areaScalarField(hio, aMesh).primitiveField()*aMesh.S().field());
+        }
+        Info<< "samosATAuto: the release volume of time " << timeDirs[0].name() << " ("
+            << (isFile(mb) ? "initialVolume of uniform/granflowMassBalance" : "sum A h of h") << ")" << endl;
+    }
     // the same reading and checks of rho and the friction law as the solver
-    const granflow::granularModel model(granularProperties);
+    const granflow::granularModel model(granularProperties, false, releaseVolume);
     const granflow::basalFriction& friction = model.friction();
     const scalar rho = model.rho();
 
     #include "readGravitationalAcceleration.H"
-    Info<< "Friction law " << friction.lawName() << ", rho = " << rho
+    Info<< "Friction law " << friction.describe().c_str() << ", rho = " << rho
         << ", g = " << g.value() << nl << endl;
 
     forAll(timeDirs, timei)

@@ -5,10 +5,88 @@
 
 #include <string>
 
-Foam::granflow::basalFriction::basalFriction(const dictionary& dict, bool exactCoulomb)
+void Foam::granflow::basalFriction::samosATAuto
+(
+    const dictionary& dict, const bool exactCoulomb, const scalar releaseVolume
+)
+{
+    const keyword::table& props = keyword::get("granularProperties");
+    // an inflow patch brings material that no release volume counts
+    if (keyword::found(dict, props, "boundaries"))
+    {
+        const keyword::table& bt = keyword::get("granularProperties/boundaries/<patch>");
+        const dictionary& bd = keyword::subDict(dict, props, "boundaries");
+        for (const entry& e : bd)
+        {
+            if (e.isDict() && keyword::read<word>(e.dict(), bt, "type") == "inflow")
+            {
+                FatalIOErrorInFunction(dict)
+                    << "Invalid entry frictionLaw samosATAuto in constant/granularProperties: the patch "
+                    << e.keyword() << " is an inflow (boundaries/" << e.keyword() << " type inflow), whose"
+                    << " hydrograph brings material that no release volume counts, and samosATAuto"
+                    << " chooses the samosAT set by the release volume (AvaFrame's com1DFA: below "
+                    << GF_SAMOSAT_VOL_SMALL << " m3 samosATSmall, below " << GF_SAMOSAT_VOL_MEDIUM
+                    << " m3 samosATMedium, else samosAT). Give the set: frictionLaw samosAT with samosATCoeffs"
+                    << " (mu 0.22, 0.17 or 0.155; tau0 0, Rs0 0.222, kappa 0.43, R 0.05, B 4.13)"
+                    << exit(FatalIOError);
+            }
+        }
+    }
+    if (releaseVolume < 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid entry frictionLaw samosATAuto in constant/granularProperties: this program does not"
+            << " know the release volume that chooses the samosAT set (faGranularFlowFoam and"
+            << " gfFrictionField do); give the set: frictionLaw samosAT with samosATCoeffs"
+            << exit(FatalIOError);
+    }
+    const gf_samosat_set* set = nullptr;
+    if (gf_samosat_auto(releaseVolume, &set) != GF_SUCCESS)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid entry frictionLaw samosATAuto in constant/granularProperties: " << gf_error_detail()
+            << "; the release volume is sum A h of the initial thickness h (the start time's h, set by gfSetRelease): a"
+            << " case without a release cannot choose a set; give it: frictionLaw samosAT with samosATCoeffs"
+            << exit(FatalIOError);
+    }
+    if (gf_friction_init_samosat_set(&law_, set) != GF_SUCCESS)
+    {
+        FatalErrorInFunction << "samosATAuto: " << gf_error_detail() << exit(FatalError);
+    }
+    // u0: exact Coulomb where the scheme takes it (explicit), else the law's
+    // regularised default (the implicit scheme needs u0 > 0)
+    if (exactCoulomb)
+    {
+        gf_friction_set(&law_, "u0", 0);
+    }
+    autoSet_ = set->name;
+    double u0 = 0;
+    gf_friction_get(&law_, "u0", &u0);
+    Info<< "samosATAuto: release volume " << releaseVolume << " m3 -> " << autoSet_ << " (mu " << set->mu
+        << ", tau0 " << set->tau0 << " Pa, Rs0 " << set->Rs0 << ", kappa " << set->kappa << ", R " << set->R
+        << " m, B " << set->B << ", u0 " << u0 << " m/s); AvaFrame's com1DFA volume classes: samosATSmall below "
+        << GF_SAMOSAT_VOL_SMALL << " m3, samosATMedium below " << GF_SAMOSAT_VOL_MEDIUM
+        << " m3, else samosAT; the volume is sum A h of the initial h on the terrain" << endl;
+    if (keyword::found(dict, props, "samosATCoeffs"))
+    {
+        Info<< "samosATAuto: the entry samosATCoeffs is not used (frictionLaw samosAT takes a set as given)"
+            << endl;
+    }
+}
+
+
+Foam::granflow::basalFriction::basalFriction
+(
+    const dictionary& dict, bool exactCoulomb, const scalar releaseVolume
+)
 {
     const keyword::table& props = keyword::get("granularProperties");
     const word lawName(keyword::read<word>(dict, props, "frictionLaw"));
+    if (lawName == "samosATAuto")
+    {
+        samosATAuto(dict, exactCoulomb, releaseVolume);
+        return;
+    }
     if (gf_friction_init(&law_, lawName.c_str()) != GF_SUCCESS)
     {
         FatalIOErrorInFunction(dict)

@@ -14,14 +14,17 @@ namespace
 }
 
 
-Foam::granflow::granularModel::granularModel(const dictionary& dict, bool exactCoulomb)
+Foam::granflow::granularModel::granularModel
+(
+    const dictionary& dict, bool exactCoulomb, const scalar releaseVolume
+)
 :
     dict_(dict),
     rho_(keyword::read<scalar>(dict, props(), "rho")),
     xi_(keyword::read<scalar>(dict, props(), "xi")),
     hMin_(keyword::read<scalar>(dict, props(), "hMin")),
     earthPressure_(),
-    friction_(dict, exactCoulomb),
+    friction_(dict, exactCoulomb, releaseVolume),
     lateralPressure_(keyword::read<bool>(dict, props(), "lateralPressure")),
     centrifugalPressure_(keyword::read<bool>(dict, props(), "centrifugalPressure")),
     lateralPressureFeedback_(keyword::read<bool>(dict, props(), "lateralPressureFeedback")),
@@ -75,7 +78,7 @@ void Foam::granflow::granularModel::earthPressure
 void Foam::granflow::granularModel::report(Ostream& os) const
 {
     os  << "Granular model: rho = " << rho_ << ", xi = " << xi_ << ", hMin = " << hMin_
-        << ", friction " << friction_.lawName()
+        << ", friction " << friction_.describe().c_str()
         << ", earth pressure " << (isotropic() ? "isotropic" : "savageHutter")
         << " (K_act " << earthPressure_.k_act << ", K_pass " << earthPressure_.k_pass << ")"
         << nl << "    terms: lateralPressure " << Switch(lateralPressure_)

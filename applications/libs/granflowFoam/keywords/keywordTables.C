@@ -66,12 +66,18 @@ std::vector<table> frictionTables()
     return out;
 }
 
+// the laws, and samosATAuto after samosAT (AvaFrame's choice of the samosAT
+// set by release volume, gf_samosat_auto; basalFriction.C)
 std::string frictionChoices()
 {
     std::string s;
     for (const gf_friction_type* const* t = gf_friction_types(); *t; ++t)
     {
         s += (s.empty() ? "" : " | ") + std::string((*t)->name);
+        if (*t == gf_friction_samosat)
+        {
+            s += " | samosATAuto";
+        }
     }
     return s;
 }
@@ -201,7 +207,12 @@ std::vector<table> makeTables()
             {"savageHutterCoeffs", "dictionary", "-", "", "", "savageHutter",
              "phi and delta of earthPressure savageHutter (table below)"},
             {"frictionLaw", "word", "required", frictionChoices(), "", "",
-             "basal friction law, evaluated by libgranflow (granflow/friction.h; FA eq. 31's nu)"},
+             "basal friction law, evaluated by libgranflow (granflow/friction.h; FA eq. 31's nu);"
+             " samosATAuto: the samosAT set AvaFrame's com1DFA takes for the release volume V = sum A h"
+             " of the initial h (the volume on the terrain): samosATSmall (mu 0.22) below "
+           + num(GF_SAMOSAT_VOL_SMALL) + " m3, samosATMedium (mu 0.17) below " + num(GF_SAMOSAT_VOL_MEDIUM)
+           + " m3, else samosAT (mu 0.155); u0 0 (explicit) or 1e-4 m/s (implicit); no samosATCoeffs;"
+             " refused with an inflow patch or without a release (doc/guide/friction.md)"},
         };
         for (const gf_friction_type* const* l = gf_friction_types(); *l; ++l)
         {

@@ -163,6 +163,44 @@ double gf_friction_decelerate(double u, double decel_dt);
 gf_status gf_friction_implicit_speed(const gf_friction *f, const gf_friction_state *s, double M,
                                      double dt, double *speed);
 
+/* ---- samosATAuto: AvaFrame com1DFA's samosAT set by release volume ------------
+ *
+ * com1DFA's frictModel samosATAuto (com1DFACfg.ini volClassSmall 25000,
+ * volClassMedium 60000; checkCfg.checkCfgFrictionModel) takes, for the
+ * release volume V,
+ *
+ *     V <  25,000 m^3            samosATSmall    mu 0.22
+ *     25,000 <= V < 60,000 m^3   samosATMedium   mu 0.17
+ *     V >= 60,000 m^3            samosAT         mu 0.155 (the standard set)
+ *
+ * with tau0 0 Pa, Rs0 0.222, kappa 0.43, R 0.05 m and B 4.13 in all three.
+ * V is the volume on the terrain (com1DFA.fetchRelVolume: each DEM cell in
+ * the release polygons, its thickness, measured normal to the slope, times
+ * its true inclined area, summed; with secondary release areas their volume
+ * added), not the plan area times the thickness.  (com1DFA's code tests
+ * V > volClassMedium for the standard set and so leaves V = 60,000 m^3
+ * exactly unset; its documentation's V >= 60,000 m^3 is taken here.) */
+#define GF_SAMOSAT_VOL_SMALL 25000.0  /* [m^3] below: samosATSmall */
+#define GF_SAMOSAT_VOL_MEDIUM 60000.0 /* [m^3] below: samosATMedium; from it on: samosAT */
+
+/* One of AvaFrame's samosAT coefficient sets. */
+typedef struct gf_samosat_set {
+    const char *name; /* "samosATSmall", "samosATMedium", "samosAT" */
+    double mu, tau0, Rs0, kappa, R, B;
+} gf_samosat_set;
+
+/* The three sets, small, medium, standard (NULL-terminated by name). */
+const gf_samosat_set *gf_samosat_sets(void);
+
+/* The set samosATAuto takes for release volume V [m^3] in *set.  GF_EDOM
+ * for V <= 0 (no release volume: nothing to choose by), GF_ENONFINITE for a
+ * V that is not finite. */
+gf_status gf_samosat_auto(double volume, const gf_samosat_set **set);
+
+/* Initialise f as law samosAT with the coefficients of set (u0 the law's
+ * default, 1e-4 m/s; gf_friction_set changes it). */
+gf_status gf_friction_init_samosat_set(gf_friction *f, const gf_samosat_set *set);
+
 #ifdef __cplusplus
 }
 #endif

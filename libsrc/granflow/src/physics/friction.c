@@ -299,3 +299,43 @@ gf_status gf_friction_static_bound(const gf_friction *f, const gf_friction_state
     *tau_s = r.tau;
     return GF_SUCCESS;
 }
+
+/* ---- samosATAuto (AvaFrame com1DFA: com1DFACfg.ini's three sets) ---------- */
+static const gf_samosat_set samosat_sets[] = {
+    {"samosATSmall", 0.22, 0.0, 0.222, 0.43, 0.05, 4.13},
+    {"samosATMedium", 0.17, 0.0, 0.222, 0.43, 0.05, 4.13},
+    {"samosAT", 0.155, 0.0, 0.222, 0.43, 0.05, 4.13},
+    {NULL, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0},
+};
+
+const gf_samosat_set *gf_samosat_sets(void) { return samosat_sets; }
+
+gf_status gf_samosat_auto(double volume, const gf_samosat_set **set)
+{
+    if (!set)
+        return gf_fail(GF_EINVAL, "gf_samosat_auto: null output");
+    if (!isfinite(volume))
+        return gf_fail(GF_ENONFINITE, "the release volume %g m^3 that chooses the samosAT set is not a finite number",
+                       volume);
+    if (!(volume > 0.0))
+        return gf_fail(GF_EDOM,
+                       "the release volume %g m^3 that chooses the samosAT set: allowed > 0 (the volume"
+                       " released at the start; without one there is nothing to choose by)",
+                       volume);
+    *set = volume < GF_SAMOSAT_VOL_SMALL ? &samosat_sets[0]
+           : volume < GF_SAMOSAT_VOL_MEDIUM ? &samosat_sets[1]
+                                            : &samosat_sets[2];
+    return GF_SUCCESS;
+}
+
+gf_status gf_friction_init_samosat_set(gf_friction *f, const gf_samosat_set *set)
+{
+    if (!f || !set || !set->name)
+        return gf_fail(GF_EINVAL, "gf_friction_init_samosat_set: null argument");
+    gf_status st = gf_friction_init(f, "samosAT");
+    const char *keys[6] = {"mu", "tau0", "Rs0", "kappa", "R", "B"};
+    const double vals[6] = {set->mu, set->tau0, set->Rs0, set->kappa, set->R, set->B};
+    for (int k = 0; k < 6 && st == GF_SUCCESS; ++k)
+        st = gf_friction_set(f, keys[k], vals[k]);
+    return st;
+}
