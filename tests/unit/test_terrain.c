@@ -364,14 +364,6 @@ static void outline_and_map_are_written(void **state)
     GDALClose(ds);
     assert_int_equal(nf, 2);
     assert_close(sum, area, 1e-9);
-    assert_int_equal(gf_raster_png(tmp("map.png"), &dem, v, 0.1, 1.0), GF_SUCCESS);
-    ds = GDALOpen(tmp("map.png"), GA_ReadOnly);
-    assert_non_null(ds);
-    assert_int_equal(GDALGetRasterCount(ds), 3);
-    assert_int_equal(GDALGetRasterXSize(ds), 6);
-    assert_true(GDALGetRasterYSize(ds) > 5);
-    GDALClose(ds);
-    assert_int_equal(gf_raster_png(tmp("map2.png"), &dem, v, 1.0, 1.0), GF_EDOM);
     /* a 3D line with properties, read back by OGR */
     const double xyz[9] = {100, 200, 50, 130, 240, 20, 150, 250, 10};
     const char *keys[1] = {"length_m"};

@@ -14,8 +14,8 @@
  *       grid) above THRESHOLD per pixel (gf_probability_map): OUTDIR/
  *       probability.tif and .asc (0..1 on the rasters' grid), its contour
  *       lines at the levels (default 0.05,0.5,0.95) as contours.geojson and
- *       contours.xy (x y level, for gnuplot), and with -dem a map
- *       probability.png (the DEM's hillshade tinted from 0.01 to 1)
+ *       contours.xy (x y level, for gnuplot); -dem checks that the rasters
+ *       are on the DEM's grid (gfRunEnsemble draws the map with gfReportMaps)
  *   gfEnsemble percentiles P1,P2,... < values
  *       percentiles of the numbers on standard input (one per line; "nan"
  *       or "failed" lines are counted and left out): "n N failed F" and
@@ -202,9 +202,6 @@ static int probability(int argc, char **argv)
                     p.nx, p.ny);
             exit(2);
         }
-        snprintf(path, sizeof path, "%s/probability.png", dir);
-        if (gf_raster_png(path, &d, p.z, 0.01, 1.0))
-            fail(path);
         gf_raster_free(&d);
     }
     gf_raster_free(&p);

@@ -135,14 +135,6 @@ gf_status gf_raster_outline(const char *path, const gf_raster *grid, const doubl
 gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const double *xyz, const char *name,
                           size_t nprops, const char *const *keys, const double *values);
 
-/* PNG map: the hillshade of dem (sun from the north-west, 45 deg high)
- * with contour lines (about ten over the elevation range, every 1, 2 or 5 x
- * 10^n m) tinted by values where values >= vmin, colours from vmin to vmax on a
- * light yellow - orange - red - purple scale, a scale bar of that colour ramp along the
- * bottom edge with vmin and vmax written at its ends. */
-gf_status gf_raster_png(const char *path, const gf_raster *dem, const double *values,
-                        double vmin, double vmax);
-
 /* Dams (mass-exchange specification, section 3 "Dams"): a crown line, a
  * polyline of n >= 2 points (x y z interleaved, z the crown's absolute
  * elevation, as AvaFrame's Inputs/DAM lines carry it), and a wall slope
