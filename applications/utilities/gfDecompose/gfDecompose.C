@@ -45,6 +45,177 @@ extern "C"
 #include <algorithm>
 #include <numeric>
 
+namespace
+{
+
+using namespace Foam;
+
+// The options checked: ranks, width, the path's points and the weights raster
+struct options
+{
+    label np;
+    scalar width;
+    fileName pathFile;
+    size_t npath = 0;
+    double* pxy = nullptr;
+    bool byRaster = false;
+    gf_raster weights;
+};
+
+options readOptions(const argList& args, const Time& runTime)
+{
+    options o;
+    o.np = args.getOrDefault<label>("np", 0);
+    if (o.np < 2)
+    {
+        FatalErrorInFunction << "-np " << o.np << ": give the number of ranks, >= 2" << exit(FatalError);
+    }
+    o.width = args.getOrDefault<scalar>("width", 200);
+    if (!(o.width > 0))
+    {
+        FatalErrorInFunction << "-width " << o.width << ": allowed > 0 [m]" << exit(FatalError);
+    }
+    o.pathFile = granflow::terrainCase::inCase
+    (
+        args.getOrDefault<fileName>("path", "Inputs/LINES/path_aimec.shp"), runTime.path()
+    );
+    if (gf_path_read(o.pathFile.c_str(), &o.npath, &o.pxy) != GF_SUCCESS)
+    {
+        FatalErrorInFunction << "-path " << o.pathFile << ": " << gf_error_detail() << exit(FatalError);
+    }
+    o.byRaster = args.found("weights");
+    if (o.byRaster)
+    {
+        const fileName wf = granflow::terrainCase::inCase(args.get<fileName>("weights"), runTime.path());
+        if (gf_raster_read(wf.c_str(), &o.weights) != GF_SUCCESS)
+        {
+            FatalErrorInFunction << "-weights " << wf << ": " << gf_error_detail() << exit(FatalError);
+        }
+    }
+    return o;
+}
+
+// Per face: l across the path and the weight (the raster's value, or 1
+// within the width of the path)
+void distancesAndWeights
+(
+    const options& o, const vectorField& C, const vector& offset, scalarField& l, scalarField& w
+)
+{
+    forAll(C, f)
+    {
+        const double x = C[f].x() + offset.x(), y = C[f].y() + offset.y();
+        double s = 0, lf = 0;
+        gf_path_locate(o.npath, o.pxy, x, y, &s, &lf);
+        l[f] = lf;
+        if (o.byRaster)
+        {
+            const double v = gf_raster_bilinear(&o.weights, x, y);
+            w[f] = std::isfinite(v) && v > 0 ? v : 0;
+        }
+        else
+        {
+            w[f] = mag(lf) <= o.width ? 1 : 0;
+        }
+    }
+    if (!(sum(w) > 0))
+    {
+        FatalErrorInFunction
+            << (o.byRaster ? "-weights: the raster has no positive value under the mesh"
+                           : "-width: no face lies that close to the path")
+            << " (nothing to balance)" << exit(FatalError);
+    }
+}
+
+// The faces in the order of l, cut where the running weight passes k/N of
+// the total: each face's rank, each rank's weight and faces
+labelList stripRanks
+(
+    const label np, const scalarField& l, const scalarField& w, scalarField& share, labelList& count
+)
+{
+    const label nf = l.size();
+    const scalar wSum = sum(w);
+    labelList order(nf);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](label a, label b) { return l[a] < l[b]; });
+    labelList rank(nf, 0);
+    share.setSize(np, 0);
+    count.setSize(np, 0);
+    scalar run = 0;
+    label r = 0;
+    for (const label f : order)
+    {
+        while (r < np - 1 && run >= (r + 1)*wSum/np)
+        {
+            ++r;
+        }
+        rank[f] = r;
+        run += w[f];
+        share[r] += w[f];
+        ++count[r];
+    }
+    return rank;
+}
+
+// The slab mesh's cells: every cell takes the rank of the area face above
+// its column (the face's owner cell, and the cells below it: their
+// neighbours' rank, sweeping until every cell has one)
+labelList cellRanks(const fvMesh& mesh, const faMesh& aMesh, const labelList& rank)
+{
+    labelList cells(mesh.nCells(), -1);
+    const labelList& faceLabels = aMesh.faceLabels();
+    forAll(faceLabels, f)
+    {
+        cells[mesh.faceOwner()[faceLabels[f]]] = rank[f];
+    }
+    for (bool again = true; again;)
+    {
+        again = false;
+        forAll(cells, c)
+        {
+            if (cells[c] >= 0) continue;
+            for (const label nb : mesh.cellCells()[c])
+            {
+                if (cells[nb] >= 0)
+                {
+                    cells[c] = cells[nb];
+                    break;
+                }
+            }
+            again = again || cells[c] < 0;
+        }
+    }
+    return cells;
+}
+
+// constant/cellDecomposition (in ASCII, whatever the case writes: a list a
+// user can read and edit) and system/decomposeParDict (method manual)
+void writeDecomposition
+(
+    const Time& runTime, const fvMesh& mesh, const labelList& cells, const options& o, const argList& args
+)
+{
+    labelIOList cellDecomposition
+    (
+        IOobject("cellDecomposition", runTime.constant(), mesh, IOobject::NO_READ, IOobject::NO_WRITE),
+        cells
+    );
+    cellDecomposition.writeObject(IOstream::ASCII, IOstream::currentVersion, IOstream::UNCOMPRESSED, true);
+    OFstream os(runTime.system()/"decomposeParDict");
+    os  << "// written by gfDecompose: strips along the path " << o.pathFile.name()
+        << (o.byRaster ? " with equal shares of -weights " + args.get<fileName>("weights")
+                       : " with equal shares of the faces within -width of the path") << nl
+        << "FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }" << nl
+        << "numberOfSubdomains " << o.np << ";" << nl
+        << "method          manual;" << nl
+        << "coeffs          { dataFile \"cellDecomposition\"; }" << nl
+        << "manualCoeffs    { dataFile \"cellDecomposition\"; }" << nl;
+}
+
+} // namespace
+
+
 int main(int argc, char *argv[])
 {
     argList::addNote
@@ -69,143 +240,28 @@ int main(int argc, char *argv[])
     #include "createMesh.H"
     #include "createFaMesh.H"
 
-    const label np = args.getOrDefault<label>("np", 0);
-    if (np < 2)
-    {
-        FatalErrorInFunction << "-np " << np << ": give the number of ranks, >= 2" << exit(FatalError);
-    }
-    const scalar width = args.getOrDefault<scalar>("width", 200);
-    if (!(width > 0))
-    {
-        FatalErrorInFunction << "-width " << width << ": allowed > 0 [m]" << exit(FatalError);
-    }
-    const fileName pathFile =
-        granflow::terrainCase::inCase(args.getOrDefault<fileName>("path", "Inputs/LINES/path_aimec.shp"), runTime.path());
-    size_t npath = 0;
-    double* pxy = nullptr;
-    if (gf_path_read(pathFile.c_str(), &npath, &pxy) != GF_SUCCESS)
-    {
-        FatalErrorInFunction << "-path " << pathFile << ": " << gf_error_detail() << exit(FatalError);
-    }
+    options o = readOptions(args, runTime);
     const IOdictionary props
     (
         IOobject("terrainProperties", runTime.constant(), mesh, IOobject::MUST_READ, IOobject::NO_WRITE)
     );
     const vector offset =
         granflow::keyword::read<vector>(props, granflow::keyword::get("terrainProperties"), "offset");
-
-    // per face: l across the path, and its weight
     const vectorField& C = aMesh.areaCentres().primitiveField();
-    const label nf = C.size();
-    scalarField l(nf), w(nf);
-    gf_raster weights;
-    const bool byRaster = args.found("weights");
-    if (byRaster)
-    {
-        const fileName wf = granflow::terrainCase::inCase(args.get<fileName>("weights"), runTime.path());
-        if (gf_raster_read(wf.c_str(), &weights) != GF_SUCCESS)
-        {
-            FatalErrorInFunction << "-weights " << wf << ": " << gf_error_detail() << exit(FatalError);
-        }
-    }
-    forAll(C, f)
-    {
-        const double x = C[f].x() + offset.x(), y = C[f].y() + offset.y();
-        double s = 0, lf = 0;
-        gf_path_locate(npath, pxy, x, y, &s, &lf);
-        l[f] = lf;
-        if (byRaster)
-        {
-            const double v = gf_raster_bilinear(&weights, x, y);
-            w[f] = std::isfinite(v) && v > 0 ? v : 0;
-        }
-        else
-        {
-            w[f] = mag(lf) <= width ? 1 : 0;
-        }
-    }
-    const scalar wSum = sum(w);
-    if (!(wSum > 0))
-    {
-        FatalErrorInFunction
-            << (byRaster ? "-weights: the raster has no positive value under the mesh"
-                         : "-width: no face lies that close to the path")
-            << " (nothing to balance)" << exit(FatalError);
-    }
-    // the faces in the order of l; cuts where the running weight passes
-    // k/N of the total
-    labelList order(nf);
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](label a, label b) { return l[a] < l[b]; });
-    labelList rank(nf, 0);
-    scalarField share(np, 0);
-    labelList count(np, 0);
-    scalar run = 0;
-    label r = 0;
-    for (const label f : order)
-    {
-        while (r < np - 1 && run >= (r + 1)*wSum/np)
-        {
-            ++r;
-        }
-        rank[f] = r;
-        run += w[f];
-        share[r] += w[f];
-        ++count[r];
-    }
+    scalarField l(C.size()), w(C.size()), share;
+    labelList count;
+    distancesAndWeights(o, C, offset, l, w);
+    const labelList rank = stripRanks(o.np, l, w, share, count);
+    writeDecomposition(runTime, mesh, cellRanks(mesh, aMesh, rank), o, args);
 
-    // the slab mesh's cells: every cell takes the rank of the area face
-    // above its column (the face's owner cell, and the cells below it)
-    labelIOList cellDecomposition
-    (
-        IOobject("cellDecomposition", runTime.constant(), mesh, IOobject::NO_READ, IOobject::NO_WRITE),
-        labelList(mesh.nCells(), -1)
-    );
-    const labelList& faceLabels = aMesh.faceLabels();
-    forAll(faceLabels, f)
-    {
-        cellDecomposition[mesh.faceOwner()[faceLabels[f]]] = rank[f];
-    }
-    // cells not under an area face (a slab more than one cell deep): their
-    // neighbours' rank, sweeping until every cell has one
-    for (bool again = true; again;)
-    {
-        again = false;
-        forAll(cellDecomposition, c)
-        {
-            if (cellDecomposition[c] >= 0) continue;
-            for (const label nb : mesh.cellCells()[c])
-            {
-                if (cellDecomposition[nb] >= 0)
-                {
-                    cellDecomposition[c] = cellDecomposition[nb];
-                    break;
-                }
-            }
-            again = again || cellDecomposition[c] < 0;
-        }
-    }
-    // in ASCII, whatever the case writes: a list a user can read and edit
-    cellDecomposition.writeObject(IOstream::ASCII, IOstream::currentVersion, IOstream::UNCOMPRESSED, true);
-    {
-        OFstream os(runTime.system()/"decomposeParDict");
-        os  << "// written by gfDecompose: strips along the path " << pathFile.name()
-            << (byRaster ? " with equal shares of -weights " + args.get<fileName>("weights")
-                         : " with equal shares of the faces within -width of the path") << nl
-            << "FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }" << nl
-            << "numberOfSubdomains " << np << ";" << nl
-            << "method          manual;" << nl
-            << "coeffs          { dataFile \"cellDecomposition\"; }" << nl
-            << "manualCoeffs    { dataFile \"cellDecomposition\"; }" << nl;
-    }
-    Info<< "Decomposition along " << pathFile << " into " << np << " strips across it:" << nl;
+    Info<< "Decomposition along " << o.pathFile << " into " << o.np << " strips across it:" << nl;
     forAll(share, i)
     {
-        Info<< "    rank " << i << ": " << count[i] << " faces, " << 100*share[i]/wSum << " % of the weight" << nl;
+        Info<< "    rank " << i << ": " << count[i] << " faces, " << 100*share[i]/sum(w) << " % of the weight" << nl;
     }
     Info<< "Wrote constant/cellDecomposition and system/decomposeParDict (method manual): run decomposePar"
         << nl << "End" << nl << endl;
-    free(pxy);
-    if (byRaster) gf_raster_free(&weights);
+    free(o.pxy);
+    if (o.byRaster) gf_raster_free(&o.weights);
     return 0;
 }
