@@ -549,6 +549,21 @@ static void windows_switch_the_right_process(void **state)
         assert_true((r.detrained > 0.0) == (cases[i].want == GF_RESISTANCE_DETRAIN && cases[i].h > 0.0));
         assert_true((r.speed < cases[i].u) == (cases[i].want == GF_RESISTANCE_FRICTION));
     }
+    /* at rest the rate K/|u| is unbounded: the whole mass; with K = 0 (or a
+     * step of 0) no rate and nothing, at rest too (detK 0 once detrained a
+     * face at rest entirely) */
+    assert_true(gf_detrainment_mass(&x, 0.0, 50.0, 1.0, 0.1) == 50.0);
+    assert_true(gf_detrainment_mass(&x, 0.0, 50.0, 1.0, 0.0) == 0.0);
+    x.K = 0.0;
+    assert_true(gf_detrainment_mass(&x, 0.0, 50.0, 1.0, 0.1) == 0.0);
+    assert_true(gf_detrainment_mass(&x, 2.0, 50.0, 1.0, 0.1) == 0.0);
+    {
+        const gf_mass_exchange_face rest = {0.3, 0.0, 1.0, 200.0, 0.0, 0.0, 0.0, 1.0};
+        gf_mass_exchange_result rr;
+        assert_int_equal(gf_mass_exchange_face_update(&x, &rest, 0.1, &rr), GF_SUCCESS);
+        assert_true(rr.process == GF_RESISTANCE_DETRAIN && rr.h == 0.3 && rr.detrained == 0.0);
+    }
+    x.K = 5.0;
     x.detrainment = 0;
     assert_int_equal(gf_resistance_window(&x, 1.0, 0.1), GF_RESISTANCE_FRICTION);
     assert_int_equal(gf_resistance_window(&x, 50.0, 20.0), GF_RESISTANCE_FRICTION);

@@ -119,7 +119,8 @@ typedef enum gf_resistance_process {
 gf_resistance_process gf_resistance_window(const gf_mass_exchange_config *c, double speed, double h);
 
 /* Detrained mass of a face of mass m [kg] and area A in a step dt (spec §2):
- * Δm_det = min(K/|u| A dt, m); the whole mass when |u| = 0.  The remaining
+ * Δm_det = min(K/|u| A dt, m); the whole mass when |u| = 0 (and K > 0;
+ * K = 0 or dt = 0 detrains nothing, at rest too).  The remaining
  * flow keeps its velocity (the deposited snow is stopped by the
  * obstacles). */
 double gf_detrainment_mass(const gf_mass_exchange_config *c, double speed, double m, double area, double dt);

@@ -123,10 +123,14 @@ gf_resistance_process gf_resistance_window(const gf_mass_exchange_config *c, dou
     return GF_RESISTANCE_FRICTION;
 }
 
-/* spec §2: Δm_det = min(K/|u| A Δt, m) */
+/* spec §2: Δm_det = min(K/|u| A Δt, m) (Feistl et al. 2014's rate K/|u|);
+ * at rest (|u| = 0) the rate is unbounded and the whole mass goes, unless
+ * K = 0: no rate, nothing detrained (0 · ∞ taken as 0, not as the mass) */
 double gf_detrainment_mass(const gf_mass_exchange_config *c, double speed, double m, double area, double dt)
 {
     const double kad = c->K * area * dt; /* Δm_det |u| */
+    if (!(kad > 0.0))
+        return 0.0;
     return kad >= m * speed ? m : kad / speed;
 }
 
