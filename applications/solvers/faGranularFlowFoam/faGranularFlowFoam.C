@@ -40,7 +40,9 @@ Description
     (hazardMaps.H, opened through hazardMapsWriter.H), without loading the
     meshes again; a parallel run skips them with a message.  With controlDict
     energyLine yes the run writes its mass-averaged path for the energy-line
-    test (energyLine.H).
+    test (energyLine.H).  With controlDict setFields (releaseDict ...) a run
+    that starts at t = 0 sets its release (and the mass exchange's inputs)
+    itself, as gfSetRelease would (setFieldsAtStart.H).
 
 Usage
     faGranularFlowFoam [-parallel] [-keywords] [-version]
@@ -64,6 +66,7 @@ Usage
 #include "cpuSections.H"
 #include "runProfile.H"
 #include "hazardMapsWriter.H"
+#include "setFieldsAtStart.H"
 #include "stopReport.H"
 
 #include "keyword.H"
@@ -94,6 +97,10 @@ int main(int argc, char *argv[])
     profile.mark("volume mesh");
     #include "createFaMesh.H"
     profile.mark("area mesh");
+    // the initial fields set by the solver itself (controlDict setFields:
+    // as gfSetRelease would set them, into the start time; setFieldsAtStart.H)
+    granflow::setFieldsAtStart(mesh, aMesh);
+    profile.mark("set fields");
     #include "createFields.H"
 
     // the initial volume of the run; a restart continues the balance of the run

@@ -395,6 +395,11 @@ std::vector<table> makeTables()
              " and the hazard maps' summary.dat): the faces with h > hMin faster than this, their volume, the"
              " fastest face and where; a warning when stopCriterion kineticEnergy stopped the run with such"
              " faces, or when endTime ended it with the criterion on"},
+            {"setFields", "list", "()", "", "", "",
+             "dictionaries of system/ whose fields the solver sets at the start of a run from t = 0,"
+             " written into the start time before it reads them, as gfSetRelease [-dict NAME] sets them"
+             " (releaseDict: h and Us; entrainmentDict, resistanceDict: the mass exchange's inputs);"
+             " a restart keeps its own fields"},
             {"energyLine", "switch", "no", "", "", "",
              "write the mass-averaged path of the energy-line test at the start and every written time"
              " (postProcessing/energyLine: centre of mass, mean |Us|^2, mean horizontal path length;"
