@@ -3,7 +3,8 @@
  * doc/theory/mass-exchange.md, "spec §n" = its section n) pointwise and in the
  * explicit surface scheme (gf_surface_set_mass_exchange), against closed
  * forms: erosion at τ_b|u|/e_b per area with the momentum kept, ploughing
- * taking the swept layer, a layer running out, detrainment K/|u|, the
+ * taking the swept layer, a layer running out, detrainment K/|u| (and the
+ * detrained volume split by speed: the speed window, at rest), the
  * increased friction u0/(1 + c u0 t/h) and its order in dt, the windows,
  * the mass balance with the exchanged volumes, the null run unchanged, and
  * bad parameters refused. */
@@ -445,6 +446,8 @@ static void detrainment_loses_mass_as_k_over_u(void **state)
                    fabs(ex.detrained - v0) / v0);
             assert_true(L.hmax == 0.0);
             assert_true(fabs(ex.detrained - v0) <= 1e-12 * v0);
+            /* all of it in the speed window (2 m/s < v_min), none at rest */
+            assert_true(ex.detrained_slow == ex.detrained && ex.detrained_rest == 0.0);
             const double *dd = gf_surface_detrained_depth(s);
             for (size_t f = 0; f < nf; ++f)
                 assert_close(dd[f], h0, 1e-12 * h0);
@@ -517,6 +520,49 @@ static void increased_friction_slows_as_closed_form(void **state)
     for (int k = 1; k < 4; ++k)
         assert_true(fabs(log2(err[k - 1] / err[k]) - 1.0) <= 0.05);
     assert_true(drift <= 1e-12);
+}
+
+/* The split of the detrained volume by the face's speed (gf_surface_exchange,
+ * spec §2): one step of 0.1 s over the frictionless periodic strip, all of it
+ * a resistance area, a 0.2 m layer (below h_min) at rest: the whole layer
+ * goes (K/|u| unbounded), all of it in the speed window and at rest; at
+ * 10 m/s (above v_min, detrained by the thickness window): K dt/(rho |u|),
+ * none of it in the speed window; at 2 m/s: all in the window, none at rest. */
+static void detrained_volume_split_by_speed(void **state)
+{
+    (void)state;
+    const double speeds[3] = {0.0, 10.0, 2.0};
+    for (int k = 0; k < 3; ++k) {
+        periodic *p = periodic_new(8, 2, 16, 4, 0.0);
+        gf_surface_config c;
+        gf_surface_config_default(&c);
+        c.rho = 200.0;
+        gf_surface *s = uniform_layer(&p->m, &c, 0.2, speeds[k]);
+        gf_mass_exchange_config x;
+        gf_mass_exchange_config_default(&x);
+        assert_int_equal(gf_mass_exchange_simtype(&x, "res"), GF_SUCCESS);
+        double *res = filled(p->m.n_faces, 1.0);
+        assert_int_equal(gf_surface_set_mass_exchange(s, &x, NULL, res), GF_SUCCESS);
+        const double v0 = gf_surface_volume(s);
+        assert_int_equal(gf_surface_step(s, 0.1), GF_SUCCESS);
+        gf_surface_exchange ex;
+        gf_surface_get_exchange(s, &ex);
+        printf("  |u| %4.1f m/s: detrained %.6e m^3 (of %.6e), in the speed window %.6e, at rest %.6e\n", speeds[k],
+               ex.detrained_step, v0, ex.detrained_slow_step, ex.detrained_rest_step);
+        assert_true(ex.detrained_step == ex.detrained && ex.detrained_slow_step == ex.detrained_slow &&
+                    ex.detrained_rest_step == ex.detrained_rest);
+        if (k == 0) {
+            assert_close(ex.detrained, v0, 1e-12 * v0);
+            assert_true(ex.detrained_slow == ex.detrained && ex.detrained_rest == ex.detrained);
+        } else {
+            assert_close(ex.detrained, v0 * x.K * 0.1 / (c.rho * speeds[k] * 0.2), 1e-9 * v0);
+            assert_true(ex.detrained_rest == 0.0);
+            assert_true(k == 1 ? ex.detrained_slow == 0.0 : ex.detrained_slow == ex.detrained);
+        }
+        gf_surface_free(s);
+        periodic_free(p);
+        free(res);
+    }
 }
 
 /* The windows of spec §2 choose the process: pointwise at the edges of the
@@ -911,6 +957,7 @@ int main(void)
         cmocka_unit_test(ploughing_takes_the_swept_layer),
         cmocka_unit_test(a_layer_that_runs_out_stops_taking),
         cmocka_unit_test(detrainment_loses_mass_as_k_over_u),
+        cmocka_unit_test(detrained_volume_split_by_speed),
         cmocka_unit_test(increased_friction_slows_as_closed_form),
         cmocka_unit_test(windows_switch_the_right_process),
         cmocka_unit_test(mass_balance_with_exchange),

@@ -331,10 +331,16 @@ const double *gf_surface_detrained_depth(const gf_surface *s);
 /* Exchanged volumes [m^3] of this rank's owned faces at the flow density
  * (mass: rho times them): of the last gf_surface_step and since
  * gf_surface_set_mass_exchange (spec section 4's mass time series); all 0
- * without mass exchange. */
+ * without mass exchange.  Of the detrained volume, the part taken in the
+ * speed window (|u| < v_min: the rate K/|u| of spec section 2) and of that
+ * the part taken at rest (|u| = 0, where the rate is unbounded and the whole
+ * face goes); the rest was faster than v_min and thinner than h_min.
+ * AvaFrame's com1DFA detrains nothing at rest (doc/guide/avaframe-comparison.md). */
 typedef struct gf_surface_exchange {
     double entrained_step, detrained_step;
     double entrained, detrained;
+    double detrained_slow_step, detrained_rest_step; /* of detrained_step: |u| < v_min; |u| = 0 */
+    double detrained_slow, detrained_rest;           /* of detrained: likewise */
 } gf_surface_exchange;
 void gf_surface_get_exchange(const gf_surface *s, gf_surface_exchange *x);
 

@@ -550,7 +550,7 @@ gf_status gf_surface_step(gf_surface *s, double dt)
     if (dt == 0.0)
         return GF_SUCCESS;
     if (s->mx)
-        s->mx->ent_step = s->mx->det_step = 0.0;
+        s->mx->ent_step = s->mx->det_step = s->mx->det_slow_step = s->mx->det_rest_step = 0.0;
     if (s->startup_pending || s->su)
         return gf_surface_startup_step(s, dt);
     return gf_surface_step_split(s, dt, 0);

@@ -79,7 +79,7 @@ gf_status gf_surface_exchange_step(gf_surface *s, double dt, int *dried)
     struct gf_surface_mx *x = s->mx;
     const gf_surface_config *c = &s->c;
     const double *area = s->m.area;
-    double ve = 0.0, vd = 0.0;
+    double ve = 0.0, vd = 0.0, vs = 0.0, vr = 0.0;
     gf_status st;
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
@@ -115,11 +115,20 @@ gf_status gf_surface_exchange_step(gf_surface *s, double dt, int *dried)
         x->det[f] += r.detrained;
         ve += area[f] * r.entrained;
         vd += area[f] * r.detrained;
+        if (r.detrained > 0.0 && speed < x->c.v_min) { /* the speed window (spec §2) */
+            vs += area[f] * r.detrained;
+            if (speed == 0.0)
+                vr += area[f] * r.detrained; /* at rest: K/|u| unbounded, the whole face */
+        }
     }
     x->ent_step += ve;
     x->det_step += vd;
     x->ent_total += ve;
     x->det_total += vd;
+    x->det_slow_step += vs;
+    x->det_rest_step += vr;
+    x->det_slow_total += vs;
+    x->det_rest_total += vr;
     return GF_SUCCESS;
 }
 
@@ -136,6 +145,10 @@ void gf_surface_get_exchange(const gf_surface *s, gf_surface_exchange *out)
     out->detrained_step = s->mx->det_step;
     out->entrained = s->mx->ent_total;
     out->detrained = s->mx->det_total;
+    out->detrained_slow_step = s->mx->det_slow_step;
+    out->detrained_rest_step = s->mx->det_rest_step;
+    out->detrained_slow = s->mx->det_slow_total;
+    out->detrained_rest = s->mx->det_rest_total;
 }
 
 gf_status gf_surface_restore_mass_exchange(gf_surface *s, const double *h_ent_left, const double *entrained,
@@ -165,8 +178,10 @@ gf_status gf_surface_restore_mass_exchange(gf_surface *s, const double *h_ent_le
         mx->ent[f] = entrained ? entrained[f] : 0.0;
         mx->det[f] = detrained ? detrained[f] : 0.0;
     }
-    mx->ent_step = mx->det_step = 0.0;
+    mx->ent_step = mx->det_step = mx->det_slow_step = mx->det_rest_step = 0.0;
     mx->ent_total = x ? x->entrained : 0.0;
     mx->det_total = x ? x->detrained : 0.0;
+    mx->det_slow_total = x ? x->detrained_slow : 0.0;
+    mx->det_rest_total = x ? x->detrained_rest : 0.0;
     return GF_SUCCESS;
 }

@@ -42,6 +42,10 @@ struct gf_surface_mx {
     double *ent;     /* flow thickness entrained, cumulative [n_faces] */
     double *det;     /* flow thickness detrained, cumulative [n_faces] */
     double ent_step, det_step, ent_total, det_total; /* volumes [m^3] */
+    /* of det_step/det_total: detrained in the speed window |u| < v_min, and
+     * of that at rest (|u| = 0) [m^3] (spec §2; AvaFrame detrains neither
+     * material at rest nor anything faster by its speed) */
+    double det_slow_step, det_rest_step, det_slow_total, det_rest_total;
 };
 
 #define NV 4 /* reconstructed variables: h, u_x, u_y, u_z */
