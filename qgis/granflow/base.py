@@ -32,6 +32,12 @@ class GranflowAlgorithm(QgsProcessingAlgorithm):
     def groupId(self):
         return ''
 
+    HELP = ''
+
+    def shortHelpString(self):
+        # one line per paragraph: the dialog's help panel breaks lines where the text does
+        return ' '.join(self.HELP.split())
+
     def createInstance(self):
         return type(self)()
 

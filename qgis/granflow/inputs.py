@@ -40,15 +40,17 @@ def crs_text(crs):
 
 def same_crs(a, b):
     """Two CRSs are the same: equal, the same authority id, or the same
-    PROJ text without the datum shift (gfRunCase's test: an .asc's .prj
-    and a shapefile's .prj of one CRS differ in +towgs84)."""
+    PROJ parameters without the datum shift (gfRunCase's test: an .asc's
+    .prj and a shapefile's .prj of one CRS differ in +towgs84, and QGIS
+    adds +type=crs to a CRS it found no authority id for)."""
     if a == b:
         return True
     if a.authid() and a.authid() == b.authid():
         return True
 
     def proj(c):
-        return re.sub(r'\s*\+towgs84=\S*', '', c.toProj()).strip()
+        return sorted(t for t in c.toProj().split()
+                      if not t.startswith('+towgs84=') and t not in ('+type=crs', '+no_defs'))
     return bool(proj(a)) and proj(a) == proj(b)
 
 

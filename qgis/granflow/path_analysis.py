@@ -15,7 +15,7 @@ from .base import GranflowAlgorithm, num
 from .inputs import InputError, check_dem, check_vector, crs_text, same_crs, write_vector
 from .runner import failure, run_tool
 
-HELP = '''<p>The path analysis of peak rasters with granflow's <code>gfPathAnalysis</code>
+_HELP = '''<p>The path analysis of peak rasters with granflow's <code>gfPathAnalysis</code>
 (AvaFrame's ana3AIMEC): the rasters on the path-following (s, l) grid, the runout along the path
 (sRunout, runout angle) of the chosen field above its threshold, the peak-value indicators
 (MMPPR, AMPPR, MMPFT, ...) and, with a reference run's rasters, the TP/FP/FN/TN areas in the runout
@@ -51,8 +51,7 @@ class PathAnalysis(GranflowAlgorithm):
     def displayName(self):
         return 'Path analysis'
 
-    def shortHelpString(self):
-        return HELP
+    HELP = _HELP
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterRasterLayer('DEM', 'DEM'))

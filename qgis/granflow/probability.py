@@ -18,7 +18,7 @@ from .base import GranflowAlgorithm, num, remove_outputs
 from .inputs import InputError
 from .runner import Cancelled, failure, run_tool
 
-HELP = '''<p>The probability that a point is reached (peak pressure above a threshold) over an
+_HELP = '''<p>The probability that a point is reached (peak pressure above a threshold) over an
 ensemble of runs around the reference case, with granflow's <code>gfRunCase</code> (the reference
 run: mesh, release, hazard maps) and <code>gfRunEnsemble</code> (the members and the map), as
 the command line runs them (doc/guide/ensembles.md).</p>
@@ -64,8 +64,7 @@ class ProbabilityMap(GranflowAlgorithm):
     def displayName(self):
         return 'Probability map'
 
-    def shortHelpString(self):
-        return HELP
+    HELP = _HELP
 
     def initAlgorithm(self, config=None):
         self.add_case_parameters(ranks=False)

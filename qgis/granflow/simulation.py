@@ -11,7 +11,7 @@ from qgis.core import (QgsProcessingException, QgsProcessingOutputFile, QgsProce
 from . import styles
 from .base import GranflowAlgorithm
 
-HELP = '''<p>Runs an avalanche from a DEM and release polygons to the hazard maps with granflow's
+_HELP = '''<p>Runs an avalanche from a DEM and release polygons to the hazard maps with granflow's
 <code>gfRunCase</code>, exactly as the command line does: the layers are written into the output folder
 in AvaFrame's input layout (<code>Inputs/</code>: the DEM, <code>REL/release.shp</code> with a
 <code>thickness</code> attribute, <code>ENT/</code>, <code>RES/</code>, <code>DAM/</code>,
@@ -39,8 +39,7 @@ class Simulation(GranflowAlgorithm):
     def displayName(self):
         return 'Avalanche simulation'
 
-    def shortHelpString(self):
-        return HELP
+    HELP = _HELP
 
     def initAlgorithm(self, config=None):
         self.add_case_parameters()

@@ -4,7 +4,8 @@ their threshold (below it transparent, as not reached) to their maximum,
 the affected-area outline and probability contours as lines."""
 from qgis.core import (QgsColorRampShader, QgsFillSymbol, QgsLineSymbol, QgsProcessingContext,
                        QgsProcessingLayerPostProcessorInterface, QgsRasterBandStats, QgsRasterLayer,
-                       QgsRasterShader, QgsSingleBandPseudoColorRenderer, QgsVectorLayer)
+                       QgsRasterShader, QgsSingleBandPseudoColorRenderer, QgsSingleSymbolRenderer, QgsVectorLayer,
+                       QgsWkbTypes)
 from qgis.PyQt.QtGui import QColor
 
 # the post-processors must outlive processAlgorithm (Processing keeps no
@@ -49,6 +50,7 @@ def style_raster(layer, vmin, unit, colors=None, vmax=None):
     r.setClassificationMin(vmin)
     r.setClassificationMax(vmax)
     layer.setRenderer(r)
+    layer.emitStyleChanged()
     layer.triggerRepaint()
 
 
@@ -65,11 +67,12 @@ class OutlineStyle(QgsProcessingLayerPostProcessorInterface):
 
 
 def style_outline(layer, color='#202020', width='0.6'):
-    if layer.geometryType() == 2:   # polygons
+    if layer.geometryType() == QgsWkbTypes.PolygonGeometry:
         sym = QgsFillSymbol.createSimple({'style': 'no', 'outline_color': color, 'outline_width': width})
     else:
         sym = QgsLineSymbol.createSimple({'color': color, 'width': width})
-    layer.renderer().setSymbol(sym)
+    layer.setRenderer(QgsSingleSymbolRenderer(sym))
+    layer.emitStyleChanged()
     layer.triggerRepaint()
 
 

@@ -2,12 +2,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Cancel in the granflow plugin's Avalanche simulation, headless.
 
-    cancel.py INPUTS OUTPUT
+    cancel.py DEM RELEASE CELLSIZE OUTPUT
 
 Runs granflow:simulation in a standalone QGIS (QT_QPA_PLATFORM=offscreen),
-the plugin loaded from $GRANFLOW_DIR/qgis as QGIS loads it, on INPUTS (the
-folder of tutorials/ownCase/makeInputs) at 10 m with a stop fraction that
-keeps the solver running; the feedback's Cancel is pressed when the first
+the plugin loaded from $GRANFLOW_DIR/qgis as QGIS loads it, on the DEM and
+release files at CELLSIZE with a stop fraction that keeps the solver
+running; the feedback's Cancel is pressed when the first
 progress line of the solver arrives (as a user pressing Cancel in the
 dialog).  Checks: the algorithm ends with the "Cancelled" error, the solver
 had not ended (no "End condition" in the log), OUTPUT is gone, and no
@@ -21,7 +21,7 @@ from qgis.core import QgsApplication, QgsProcessingException, QgsProcessingFeedb
 
 
 def main():
-    inputs, out = sys.argv[1], os.path.abspath(sys.argv[2])
+    dem, release, cell, out = sys.argv[1], sys.argv[2], float(sys.argv[3]), os.path.abspath(sys.argv[4])
     app = QgsApplication([], False)
     app.initQgis()
     sys.path.append('/usr/share/qgis/python/plugins')
@@ -43,8 +43,8 @@ def main():
             marks['cancel'] = time.monotonic()
             feedback.cancel()
     feedback.progressChanged.connect(on_progress)
-    params = {'DEM': os.path.join(inputs, 'slope.asc'), 'RELEASE': os.path.join(inputs, 'REL', 'release.shp'),
-              'CELL_SIZE': 10, 'STOP_FRACTION': 1e-7, 'END_TIME': 3000, 'OUTPUT': out}
+    params = {'DEM': dem, 'RELEASE': release, 'CELL_SIZE': cell, 'STOP_FRACTION': 1e-7, 'END_TIME': 3000,
+              'OUTPUT': out}
     start = time.monotonic()
     error = ''
     try:
