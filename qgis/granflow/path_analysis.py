@@ -19,8 +19,8 @@ _HELP = '''<p>The path analysis of peak rasters with granflow's <code>gfPathAnal
 (AvaFrame's ana3AIMEC): the rasters on the path-following (s, l) grid, the runout along the path
 (sRunout, runout angle) of the chosen field above its threshold, the peak-value indicators
 (MMPPR, AMPPR, MMPFT, ...) and, with a reference run's rasters, the TP/FP/FN/TN areas in the runout
-area. The rasters may come from any tool (granflow, AvaFrame, RAMMS) but must lie on one grid; the
-DEM may have its own.</p>
+area. The rasters may come from any tool (granflow, AvaFrame, RAMMS) and lie on different grids:
+each is interpolated onto the path's grid on its own; each must cover the path.</p>
 <p>The options are the command line's (<code>gfPathAnalysis -help</code>): field (ppr, pft, pfv) and
 threshold (default 1 kPa, 0.1 m, 1 m/s), domain width (600 m), beta angle (10&deg;) and ds-min
 (30 m) of the runout area below the split point, the run's and the reference's names in the CSV.</p>

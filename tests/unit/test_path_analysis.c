@@ -31,14 +31,15 @@ GF_TMPDIR_FIXTURES("gf_path")
 enum { NX = 151, NY = 61 };
 #define H 2.0
 
-/* a raster on the test grid (nx x ny pixels of H, lower-left corner (0,
- * 0)) with values f(x, y) at the pixel centres (NAN -> NODATA), written
- * with GDAL as GeoTIFF and read back */
-static void make_raster(const char *name, int nx, int ny, double (*f)(double, double), gf_raster *out)
+/* a raster of nx x ny pixels of cell, lower-left corner (x0, y0), with
+ * values f(x, y) at the pixel centres (NAN -> NODATA), written with GDAL as
+ * GeoTIFF and read back */
+static void make_raster_on(const char *name, int nx, int ny, double x0, double y0, double cell,
+                           double (*f)(double, double), gf_raster *out)
 {
     gf_raster g = {0};
     g.nx = nx, g.ny = ny;
-    const double gt[6] = {0.0, H, 0.0, ny * H, 0.0, -H};
+    const double gt[6] = {x0, cell, 0.0, y0 + ny * cell, 0.0, -cell};
     memcpy(g.gt, gt, sizeof gt);
     g.nodata = -9999.0;
     g.wkt = (char *)"";
@@ -54,6 +55,12 @@ static void make_raster(const char *name, int nx, int ny, double (*f)(double, do
     assert_int_equal(gf_raster_write(path, "GTiff", &g, v), GF_SUCCESS);
     free(v);
     assert_int_equal(gf_raster_read(path, out), GF_SUCCESS);
+}
+
+/* a raster on the test grid (nx x ny pixels of H, lower-left corner (0, 0)) */
+static void make_raster(const char *name, int nx, int ny, double (*f)(double, double), gf_raster *out)
+{
+    make_raster_on(name, nx, ny, 0.0, 0.0, H, f, out);
 }
 
 static double plane(double x, double y) { (void)y; return 300.0 - 0.5 * x; }
@@ -347,6 +354,150 @@ static void shifted_runs_give_the_known_tp_fp_fn_areas(void **state)
     gf_raster_free(&dem), gf_raster_free(&ref), gf_raster_free(&run), gf_raster_free(&other);
 }
 
+/* Rasters on different grids (AvaFrame's remeshed 5 m rasters against
+ * granflow's on the DEM's grid): each is sampled onto the (s, l) grid with
+ * its own georeferencing.  A bent path (21, 101) -> (151, 71) -> (281, 31)
+ * with a domain width of 60 m on the plane DEM (grid A: 2 m, corner (0,
+ * 0)), so the grid points fall between pixel centres and the first
+ * cross-sections leave the DEM (y > 121); grid B: 3 m cells, corner (-4.3,
+ * -2.7), 104 x 46 pixels, covering all of the (s, l) grid; grid C: 2.5 m
+ * cells, corner (100.2, -1.1), covering the DEM only from x = 101.45 (its
+ * first pixel centre) on.
+ *  * a linear field given on A and on B: bilinear interpolation is exact for
+ *    it, so both samples equal the field to 1e-9 at every grid point on A,
+ *    B's also beyond the DEM (A's are NAN there);
+ *  * C misses the path points with x < 101.45 and the grid points there
+ *    (gf_path_coverage counts them; its samples are NAN there);
+ *  * the comparison of a paraboloid cap f = 10 - r^2 / (2 R), R = 50 m,
+ *    threshold 1 (a disc of radius 30 m) with the cap shifted 10 m east:
+ *    the bilinear error of f is at most (h^2 / 8)(f_xx + f_yy) = h^2 / (4R)
+ *    (0.02 on A, 0.045 on B), so a cell changes class between the one-grid
+ *    comparison (run and reference on A) and the two-grid one (the
+ *    reference on B) only where the exact run or reference value lies
+ *    within that bound of the threshold; TP, FP and FN agree to those
+ *    cells' area (under 3 % of A_ref), and with the exact classes.  The
+ *    cap against itself on the other grid: FP and FN only in those cells. */
+static double lin(double x, double y) { return 7.0 + 0.25 * x - 0.4 * y; }
+static double cap_x = 0.0;
+static double cap(double x, double y)
+{
+    const double dx = x - cap_x, dy = y - 51.0;
+    return 10.0 - (dx * dx + dy * dy) / 100.0;
+}
+
+static void rasters_on_different_grids_are_sampled_each_on_its_own(void **state)
+{
+    (void)state;
+    gf_raster dem, la, lb, lc, run_a, ref_a, ref_b, run_b;
+    make_raster("plane.tif", NX, NY, plane, &dem);
+    const double bent[6] = {21.0, 101.0, 151.0, 71.0, 281.0, 31.0};
+    gf_path_grid g;
+    assert_int_equal(gf_path_grid_make(&dem, 3, bent, 60.0, &g), GF_SUCCESS);
+    const size_t N = g.ns * g.nl;
+    make_raster("lin_a.tif", NX, NY, lin, &la);
+    make_raster_on("lin_b.tif", 104, 46, -4.3, -2.7, 3.0, lin, &lb);
+    make_raster_on("lin_c.tif", 82, 50, 100.2, -1.1, 2.5, lin, &lc);
+    assert_int_equal(gf_raster_same_grid(&la, &lb), 0);
+    double *a = malloc(N * sizeof *a), *b = malloc(N * sizeof *b), *c = malloc(N * sizeof *c);
+    gf_path_sample(&g, &la, a);
+    gf_path_sample(&g, &lb, b);
+    gf_path_sample(&g, &lc, c);
+    size_t on_dem = 0, off_a = 0;
+    for (size_t k = 0; k < N; ++k) {
+        const double exact = lin(g.x[k], g.y[k]);
+        assert_close(b[k], exact, 1e-9); /* B covers the whole grid */
+        if (gf_raster_covers(&dem, g.x[k], g.y[k])) {
+            ++on_dem;
+            assert_close(a[k], exact, 1e-9);
+        } else {
+            ++off_a;
+            assert_true(isnan(a[k]));
+        }
+        if (gf_raster_covers(&lc, g.x[k], g.y[k]))
+            assert_close(c[k], exact, 1e-9);
+        else
+            assert_true(isnan(c[k]) && g.x[k] < 101.45 + 1e-6);
+    }
+    assert_true(on_dem > N / 2 && off_a > 0); /* the ends' cross-sections leave the DEM */
+    gf_path_cover cv;
+    gf_path_coverage(&g, &lb, &dem, &cv);
+    assert_int_equal(cv.n_grid, on_dem);
+    assert_int_equal(cv.n_out, 0);
+    assert_int_equal(cv.n_path_out, 0);
+    assert_true(isnan(cv.s_min) && isnan(cv.path_s_min));
+    gf_path_coverage(&g, &la, NULL, &cv);
+    assert_int_equal(cv.n_grid, N);
+    assert_int_equal(cv.n_out, off_a);
+    gf_path_coverage(&g, &lc, &dem, &cv);
+    size_t path_out = 0, grid_out = 0;
+    double area_out = 0.0, s_last = -1.0;
+    for (size_t i = 0; i < g.ns; ++i) {
+        if (g.xp[i] < 101.45 - 1e-9)
+            ++path_out, s_last = g.s[i];
+        for (size_t j = 0; j < g.nl; ++j) {
+            const size_t k = i * g.nl + j;
+            if (gf_raster_covers(&dem, g.x[k], g.y[k]) && g.x[k] < 101.45 - 1e-9)
+                ++grid_out, area_out += g.area[k];
+        }
+    }
+    assert_true(path_out > 0);
+    assert_int_equal(cv.n_path_out, path_out);
+    assert_close(cv.path_s_min, 0.0, 0);
+    assert_close(cv.path_s_max, s_last, 0);
+    assert_int_equal(cv.n_out, grid_out);
+    assert_close(cv.area_out, area_out, 1e-6);
+    assert_close(cv.s_min, 0.0, 0);
+
+    /* the comparison: the cap on the path's second leg (216, 51), the
+     * reference 10 m west of the run */
+    cap_x = 226.0;
+    make_raster("cap_run_a.tif", NX, NY, cap, &run_a);
+    make_raster_on("cap_run_b.tif", 104, 46, -4.3, -2.7, 3.0, cap, &run_b);
+    cap_x = 216.0;
+    make_raster("cap_ref_a.tif", NX, NY, cap, &ref_a);
+    make_raster_on("cap_ref_b.tif", 104, 46, -4.3, -2.7, 3.0, cap, &ref_b);
+    double *ra = malloc(N * sizeof *ra), *fa = malloc(N * sizeof *fa), *fb = malloc(N * sizeof *fb),
+           *rb = malloc(N * sizeof *rb);
+    gf_path_sample(&g, &run_a, ra);
+    gf_path_sample(&g, &run_b, rb);
+    gf_path_sample(&g, &ref_a, fa);
+    gf_path_sample(&g, &ref_b, fb);
+    const double thr = 1.0, err_a = H * H / 200.0 + 1e-9, err_b = 3.0 * 3.0 / 200.0 + 1e-9;
+    gf_path_areas one, two, exact = {0}, self;
+    gf_path_compare(&g, ra, fa, thr, 0, &one);
+    gf_path_compare(&g, ra, fb, thr, 0, &two);
+    gf_path_compare(&g, ra, rb, thr, 0, &self);
+    double near = 0.0, near_self = 0.0; /* the cells whose class the resampling may change */
+    for (size_t k = 0; k < N; ++k) {
+        cap_x = 226.0;
+        const double er = cap(g.x[k], g.y[k]);
+        cap_x = 216.0;
+        const double ef = cap(g.x[k], g.y[k]);
+        const int in_r = er > thr, in_f = ef > thr;
+        exact.tp += in_r && in_f ? g.area[k] : 0.0;
+        exact.fp += in_r && !in_f ? g.area[k] : 0.0;
+        exact.fn += !in_r && in_f ? g.area[k] : 0.0;
+        if (fabs(er - thr) <= err_a || fabs(ef - thr) <= err_b)
+            near += g.area[k];
+        if (fabs(er - thr) <= err_b)
+            near_self += g.area[k];
+    }
+    exact.a_ref = exact.tp + exact.fn;
+    assert_true(exact.tp > 1000.0 && exact.fp > 100.0 && exact.fn > 100.0);
+    assert_true(near < 0.03 * exact.a_ref);
+    assert_true(fabs(two.tp - one.tp) <= near && fabs(two.fp - one.fp) <= near &&
+                fabs(two.fn - one.fn) <= near);
+    assert_true(fabs(two.tp - exact.tp) <= near && fabs(two.fp - exact.fp) <= near &&
+                fabs(two.fn - exact.fn) <= near);
+    assert_true(fabs(one.tp - exact.tp) <= near && fabs(one.fp - exact.fp) <= near &&
+                fabs(one.fn - exact.fn) <= near);
+    assert_true(self.fp + self.fn <= near_self && self.tp >= self.a_ref - near_self);
+    free(a), free(b), free(c), free(ra), free(fa), free(fb), free(rb);
+    gf_path_grid_free(&g);
+    gf_raster_free(&dem), gf_raster_free(&la), gf_raster_free(&lb), gf_raster_free(&lc);
+    gf_raster_free(&run_a), gf_raster_free(&ref_a), gf_raster_free(&ref_b), gf_raster_free(&run_b);
+}
+
 /* Section 2, runout area: on the plane that turns flat at x = 151, the
  * slope (centred differences) at x = 151 is atan(1/4) = 14 deg and 0 from
  * x = 153 on: the beta point below a split point at x = 101 is x = 153 (s =
@@ -457,6 +608,7 @@ int main(void)
         cmocka_unit_test(nodata_is_nan_and_not_reached),
         cmocka_unit_test(path_leaving_the_dem_is_refused),
         cmocka_unit_test(shifted_runs_give_the_known_tp_fp_fn_areas),
+        cmocka_unit_test(rasters_on_different_grids_are_sampled_each_on_its_own),
         cmocka_unit_test(beta_point_is_where_the_slope_stays_below_ten_degrees),
         cmocka_unit_test(paths_and_points_are_read_through_ogr),
     };

@@ -78,8 +78,12 @@ static void usage(FILE *f)
                "AvaFrame's ana3AIMEC): the rasters on the path-following (s, l) grid, the\n"
                "cross-section maximum and mean along the path, the runout (sRunout, runoutAngle)\n"
                "of -field above -threshold, MMA/AMA (maxpprCrossMax, meanpprCrossMax, ...) and,\n"
-               "with -ref-<field>, the TP/FP/FN/TN areas in the runout area.  Every raster\n"
-               "given must lie on one grid (the DEM may have its own).  Writes to DIR:\n"
+               "with -ref-<field>, the TP/FP/FN/TN areas in the runout area.  Each raster is\n"
+               "interpolated (bilinear) onto the (s, l) grid with its own georeferencing, so\n"
+               "the rasters may lie on different grids (AvaFrame's remeshed 5 m rasters against\n"
+               "granflow's on the DEM's); each must cover the path, and the grid points on the\n"
+               "DEM a raster does not cover count as not reached (the summary says how many).\n"
+               "Writes to DIR:\n"
                "pathAnalysis.csv (one row per run), pathProfile.csv (along s), pathGrid.csv\n"
                "(the (s, l) grid), summary.dat, and pathField.png, pathProfile.png,\n"
                "pathCompare.png (gnuplot).\n\noptions:\n");
@@ -237,6 +241,8 @@ typedef struct analysis {
     size_t i_split, i_beta;     /* the split point and the beta point on the path */
     double split_dist;
     gf_path_areas ar;           /* the comparison in the runout area */
+    char note[4 * NF][640];     /* rasters on another grid, grid points they do not cover */
+    int n_note;
 } analysis;
 
 /* -help, -version, -keywords and the options given (into given[]): -1 to go
@@ -310,7 +316,10 @@ static void check_options(settings *S)
 }
 
 /* the DEM, the path and its (s, l) grid, the rasters of the run and the
- * reference, every field on one grid */
+ * reference; each raster is sampled onto the (s, l) grid on its own
+ * (gf_path_sample), so they may lie on different grids, but each must cover
+ * the path; a raster on another grid than the -field's raster, and the grid
+ * points on the DEM a raster does not cover, are noted in the summary */
 static void read_inputs(const settings *S, analysis *A)
 {
     read_raster("-dem", opt("-dem"), &A->dem);
@@ -326,16 +335,31 @@ static void read_inputs(const settings *S, analysis *A)
         load_run(&A->F, opt("-ref-name") ? opt("-ref-name") : "reference", ref_keys, &A->g);
     const gf_raster *grid0 = &A->R.r[S->field];
     const char *file0 = opt(run_keys[S->field]), *key0 = run_keys[S->field];
+    char a[160], b[160];
+    grid_text(grid0, a, sizeof a);
+    A->n_note = 0;
     for (int w = 0; w < 2; ++w)
         for (int f = 0; f < NF; ++f) {
             const run *X = w ? &A->F : &A->R;
-            if (!X->has[f] || gf_raster_same_grid(grid0, &X->r[f]))
+            if (!X->has[f])
                 continue;
-            char a[160], b[160];
-            grid_text(grid0, a, sizeof a);
+            const char *key = w ? ref_keys[f] : run_keys[f], *file = opt(key);
             grid_text(&X->r[f], b, sizeof b);
-            die("%s %s is on another grid (%s) than %s %s (%s); the rasters must lie on one grid",
-                w ? ref_keys[f] : run_keys[f], opt(w ? ref_keys[f] : run_keys[f]), b, key0, file0, a);
+            gf_path_cover c;
+            gf_path_coverage(&A->g, &X->r[f], &A->dem, &c);
+            if (c.n_path_out)
+                die("%s %s (%s) does not cover the path: %zu of its %zu points, s %.1f .. %.1f m, lie"
+                    " outside the raster's pixel centres; every raster must cover the path (as the DEM"
+                    " must)", key, file, b, c.n_path_out, A->g.ns, c.path_s_min, c.path_s_max);
+            if (!gf_raster_same_grid(grid0, &X->r[f]))
+                snprintf(A->note[A->n_note++], sizeof A->note[0],
+                         "%s %s is on another grid (%s) than %s %s (%s); each raster is sampled onto the"
+                         " (s, l) grid on its own (bilinear)", key, file, b, key0, file0, a);
+            if (c.n_out)
+                snprintf(A->note[A->n_note++], sizeof A->note[0],
+                         "%s %s does not cover %zu of the %zu (s, l) grid points on the DEM (%.0f m2;"
+                         " s %.1f .. %.1f m, l %.1f .. %.1f m): not reached there", key, file, c.n_out,
+                         c.n_grid, c.area_out, c.s_min, c.s_max, c.l_min, c.l_max);
         }
 }
 
@@ -487,7 +511,7 @@ static void print_summary(const settings *S, const analysis *A)
     const double thr = S->thr;
     char path[1200];
     FILE *s = open_out(S->dir, "summary.dat", path, sizeof path);
-    char line[512];
+    char line[1024];
 #define SAY(...)                                   \
     do {                                           \
         snprintf(line, sizeof line, __VA_ARGS__); \
@@ -501,6 +525,8 @@ static void print_summary(const settings *S, const analysis *A)
         SAY("split point snapped to s = %.1f m (%.1f m off the path); beta point (slope < %g deg over"
             " %g m): s = %.1f m, z = %.1f m",
             g->s[A->i_split], A->split_dist, S->beta, S->ds_min, g->s[A->i_beta], g->zp[A->i_beta]);
+    for (int k = 0; k < A->n_note; ++k)
+        SAY("%s", A->note[k]);
     for (int w = 0; w < 1 + S->has_ref; ++w) {
         const run *X = w ? &A->F : &A->R;
         const gf_runout *o = &X->ro;

@@ -28,7 +28,10 @@
  * Fields on the (s, l) grid: bilinear interpolation between pixel centres;
  * NAN outside the raster's pixel centres or where a pixel with a non-zero
  * weight is NODATA.  NAN counts as "not reached" and is left out of maxima and
- * means.
+ * means.  Each raster is sampled with its own georeferencing, so rasters on
+ * different grids (another origin or cell size than the DEM's or each
+ * other's, e.g. AvaFrame's remeshed 5 m rasters) are compared on the one
+ * (s, l) grid, as AvaFrame's AIMEC does.
  */
 #ifndef GRANFLOW_PATH_ANALYSIS_H
 #define GRANFLOW_PATH_ANALYSIS_H
@@ -75,12 +78,36 @@ void gf_path_grid_free(gf_path_grid *g);
  *  NODATA (section 1). */
 double gf_raster_bilinear(const gf_raster *r, double x, double y);
 
+/** Does raster r cover the point (x, y): inside the square of its pixel
+ *  centres (to 1e-9 of a cell), where gf_raster_bilinear interpolates?  1
+ *  yes, 0 no (NODATA pixels count as covered). */
+int gf_raster_covers(const gf_raster *r, double x, double y);
+
 /** Do rasters a and b lie on one grid (size, origin and cell size to 1e-6 of
  *  a cell)?  1 yes, 0 no. */
 int gf_raster_same_grid(const gf_raster *a, const gf_raster *b);
 
-/** Field r on the grid (section 1): out[ns nl], bilinear, NAN outside. */
+/** Field r on the grid (section 1): out[ns nl], bilinear interpolation of r
+ *  at the grid points with r's own georeferencing (r need not lie on the
+ *  DEM's grid or on another raster's), NAN outside r (gf_raster_covers). */
 void gf_path_sample(const gf_path_grid *g, const gf_raster *r, double *out);
+
+/** The part of the grid a raster does not cover (gf_raster_covers): the
+ *  grid points outside its pixel centres, there NAN ("not reached") after
+ *  gf_path_sample.  Only the grid points that raster `within` covers count
+ *  (the DEM: the (s, l) grid reaches beyond a DEM narrower than the domain
+ *  width); NULL: all of them. */
+typedef struct gf_path_cover {
+    size_t n_grid;                      /**< grid points counted (inside `within`) */
+    size_t n_out;                       /**< of these, the points r does not cover */
+    size_t n_path_out;                  /**< path points (xp, yp; l = 0) r does not cover */
+    double path_s_min, path_s_max;      /**< their s range [m] (NAN when n_path_out = 0) */
+    double area_out;                    /**< the n_out points' cell area [m2] */
+    double s_min, s_max, l_min, l_max;  /**< their extent in s and l [m] (NAN when n_out = 0) */
+} gf_path_cover;
+
+void gf_path_coverage(const gf_path_grid *g, const gf_raster *r, const gf_raster *within,
+                      gf_path_cover *c);
 
 /** Along-path profiles of a field on the grid (section 2): cross_max[i] =
  *  max over l, cross_mean[i] = mean over l of the values that are not NAN

@@ -17,12 +17,26 @@
 
 /*------------------------------------------------------- rasters, bilinear --*/
 
+/* fractional pixel indices of (x, y) on r, pixel centres at integers; 1 when
+ * (x, y) lies in the square of pixel centres (to 1e-9 of a cell), the one
+ * test of gf_raster_bilinear and gf_raster_covers */
+static int pixel_position(const gf_raster *r, double x, double y, double *fc, double *fr)
+{
+    *fc = (x - r->gt[0]) / r->gt[1] - 0.5, *fr = (y - r->gt[3]) / r->gt[5] - 0.5;
+    const double eps = 1e-9;
+    return *fc >= -eps && *fc <= r->nx - 1 + eps && *fr >= -eps && *fr <= r->ny - 1 + eps;
+}
+
+int gf_raster_covers(const gf_raster *r, double x, double y)
+{
+    double fc, fr;
+    return pixel_position(r, x, y, &fc, &fr);
+}
+
 double gf_raster_bilinear(const gf_raster *r, double x, double y)
 {
-    /* fractional pixel indices of (x, y), pixel centres at integers */
-    const double fc = (x - r->gt[0]) / r->gt[1] - 0.5, fr = (y - r->gt[3]) / r->gt[5] - 0.5;
-    const double eps = 1e-9;
-    if (!(fc >= -eps && fc <= r->nx - 1 + eps && fr >= -eps && fr <= r->ny - 1 + eps))
+    double fc, fr;
+    if (!pixel_position(r, x, y, &fc, &fr))
         return NAN;
     int c0 = (int)floor(fc), r0 = (int)floor(fr);
     c0 = c0 < 0 ? 0 : (c0 > r->nx - 2 ? r->nx - 2 : c0);
@@ -242,6 +256,35 @@ void gf_path_sample(const gf_path_grid *g, const gf_raster *r, double *out)
     const size_t N = g->ns * g->nl;
     for (size_t k = 0; k < N; ++k)
         out[k] = gf_raster_bilinear(r, g->x[k], g->y[k]);
+}
+
+void gf_path_coverage(const gf_path_grid *g, const gf_raster *r, const gf_raster *within,
+                      gf_path_cover *c)
+{
+    memset(c, 0, sizeof *c);
+    c->s_min = c->l_min = c->path_s_min = HUGE_VAL, c->s_max = c->l_max = c->path_s_max = -HUGE_VAL;
+    for (size_t i = 0; i < g->ns; ++i) {
+        if (!gf_raster_covers(r, g->xp[i], g->yp[i])) {
+            ++c->n_path_out;
+            c->path_s_min = fmin(c->path_s_min, g->s[i]), c->path_s_max = fmax(c->path_s_max, g->s[i]);
+        }
+        for (size_t j = 0; j < g->nl; ++j) {
+            const size_t k = i * g->nl + j;
+            if (within && !gf_raster_covers(within, g->x[k], g->y[k]))
+                continue;
+            ++c->n_grid;
+            if (gf_raster_covers(r, g->x[k], g->y[k]))
+                continue;
+            ++c->n_out;
+            c->area_out += g->area[k];
+            c->s_min = fmin(c->s_min, g->s[i]), c->s_max = fmax(c->s_max, g->s[i]);
+            c->l_min = fmin(c->l_min, g->l[j]), c->l_max = fmax(c->l_max, g->l[j]);
+        }
+    }
+    if (!c->n_out)
+        c->s_min = c->s_max = c->l_min = c->l_max = NAN;
+    if (!c->n_path_out)
+        c->path_s_min = c->path_s_max = NAN;
 }
 
 void gf_path_profiles(const gf_path_grid *g, const double *a, double *cross_max,
