@@ -45,10 +45,13 @@ Description
     itself, as gfSetRelease would (setFieldsAtStart.H).
 
 Usage
-    faGranularFlowFoam [-parallel] [-keywords] [-version]
+    faGranularFlowFoam [-parallel] [-keywords] [-version] [-members FILE]
 
     -keywords prints the keyword reference of every granflow dictionary
     (Markdown, doc/keywords.md) and -version the granflow version.
+    -members FILE runs the case folders listed in FILE back to back on this
+    case's meshes, loaded once (an ensemble worker of gfRunEnsemble;
+    memberRuns.H).
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
@@ -74,86 +77,112 @@ Usage
 #include "clipRoundOff.H"
 #include "repeatStep.H"
 #include "energyLine.H"
+#include "memberRuns.H"
 
 int main(int argc, char *argv[])
 {
     granflow::keepFreedMemory();   // the implicit scheme's many temporary fields (keepFreedMemory.H)
-    granflow::runProfile profile;  // where the wall time and memory go (runProfile.H)
+    granflow::runProfile setupProfile;  // where the wall time and memory go (runProfile.H)
     argList::addNote
     (
         "Shallow granular flow on curved 3D surfaces (Rauter-Tukovic model)"
         " with libgranflow physics"
     );
     granflow::keyword::addOptions();   // -keywords (the keyword reference), -version
+    granflow::memberRuns::addOptions(); // -members FILE (memberRuns.H)
     if (granflow::keyword::earlyOptions(argc, argv))
     {
         return 0;
     }
     #include "setRootCase.H"
     granflow::keyword::banner();
-    #include "createTime.H"
-    profile.mark("start and controls");
+    // createTime.H's Time, whose case can move to an ensemble member's (memberRuns.H)
+    granflow::memberTime runTime(Foam::Time::controlDictName, args);
+    setupProfile.mark("start and controls");
     #include "createMesh.H"
-    profile.mark("volume mesh");
+    setupProfile.mark("volume mesh");
     #include "createFaMesh.H"
-    profile.mark("area mesh");
-    // the initial fields set by the solver itself (controlDict setFields:
-    // as gfSetRelease would set them, into the start time; setFieldsAtStart.H)
-    granflow::setFieldsAtStart(mesh, aMesh);
-    profile.mark("set fields");
-    #include "createFields.H"
-
-    // the initial volume of the run; a restart continues the balance of the run
-    // it restarts (granularBoundaries.H)
-    const scalar mass0 = boundaries.initialVolume(gSum(h.primitiveField()*aMesh.S().field()));
-    Info<< "Initial mass (volume) " << mass0 << " m3" << nl << endl;
-    granflow::peakFields peaks(mesh, aMesh);   // controlDict peakFields yes (peakFields.H)
-    peaks.update(h, Us);
-    profile.mark("fields");
-    // the hazard maps at the end (controlDict hazardMaps yes; hazardMapsWriter.H):
-    // the terrain and its DEM read now, so that a bad case stops before the run
-    const autoPtr<granflow::hazardMapsWriter> maps(granflow::hazardMapsAtEnd(mesh, aMesh, peaks.on()));
-    if (maps.valid()) profile.mark("hazard maps set-up (terrain)");
-    if (explicitScheme)
+    setupProfile.mark("area mesh");
+    // -members FILE: the listed cases run back to back on these meshes
+    // (memberRuns.H, an ensemble worker); without it, one run of this case
+    granflow::memberRuns members(args, runTime);
+    while (members.next())
     {
-        #include "explicitLoop.H"
-    }
-    else
-    {
-        // the end condition on the kinetic energy is the explicit scheme's
-        // (explicitLoop.H): controlDict stopCriterion kineticEnergy is refused here
-        granflow::keyword::read<word>
-        (
-            runTime.controlDict(), granflow::keyword::get("controlDict"), "stopCriterion", "implicit"
-        );
-        // the mass exchange is the explicit scheme's (a per-step update of
-        // its kernel): massExchange simType other than null is refused here
-        granflow::readMassExchange(granularProperties, "implicit");
-        #include "implicitLoop.H"
-        profile.mark("time loop");
-    }
-    if (maps.valid())
-    {
-        // after the last time and its mass balance are written: the maps of
-        // the latest written time, as gfHazardMaps makes them afterwards
-        peaks.flush();
-        const instantList times = runTime.times();
-        if (times.last().name() != runTime.timeName())
+        granflow::runProfile memberProfile;   // a member's own stages (worker)
+        granflow::runProfile& profile = members.on() ? memberProfile : setupProfile;
+        try
         {
-            Info<< "hazardMaps: the run ended at t = " << runTime.timeName() << " s, which is not"
-                << " written; the maps are those of the latest written time " << times.last().name()
-                << " s" << nl;
+            members.start(runTime);
+            // the initial fields set by the solver itself (controlDict setFields:
+            // as gfSetRelease would set them, into the start time; setFieldsAtStart.H)
+            granflow::setFieldsAtStart(mesh, aMesh);
+            profile.mark("set fields");
+            #include "createFields.H"
+
+            // the initial volume of the run; a restart continues the balance of the run
+            // it restarts (granularBoundaries.H)
+            const scalar mass0 = boundaries.initialVolume(gSum(h.primitiveField()*aMesh.S().field()));
+            Info<< "Initial mass (volume) " << mass0 << " m3" << nl << endl;
+            granflow::peakFields peaks(mesh, aMesh);   // controlDict peakFields yes (peakFields.H)
+            peaks.update(h, Us);
+            profile.mark("fields");
+            // the hazard maps at the end (controlDict hazardMaps yes; hazardMapsWriter.H):
+            // the terrain and its DEM read now, so that a bad case stops before the run
+            const autoPtr<granflow::hazardMapsWriter> maps(granflow::hazardMapsAtEnd(mesh, aMesh, peaks.on()));
+            if (maps.valid()) profile.mark("hazard maps set-up (terrain)");
+            if (explicitScheme)
+            {
+                #include "explicitLoop.H"
+            }
+            else
+            {
+                // the end condition on the kinetic energy is the explicit scheme's
+                // (explicitLoop.H): controlDict stopCriterion kineticEnergy is refused here
+                granflow::keyword::read<word>
+                (
+                    runTime.controlDict(), granflow::keyword::get("controlDict"), "stopCriterion", "implicit"
+                );
+                // the mass exchange is the explicit scheme's (a per-step update of
+                // its kernel): massExchange simType other than null is refused here
+                granflow::readMassExchange(granularProperties, "implicit");
+                #include "implicitLoop.H"
+                profile.mark("time loop");
+            }
+            if (maps.valid())
+            {
+                // after the last time and its mass balance are written: the maps of
+                // the latest written time, as gfHazardMaps makes them afterwards
+                peaks.flush();
+                const instantList times = runTime.times();
+                if (times.last().name() != runTime.timeName())
+                {
+                    Info<< "hazardMaps: the run ended at t = " << runTime.timeName() << " s, which is not"
+                        << " written; the maps are those of the latest written time " << times.last().name()
+                        << " s" << nl;
+                }
+                Info<< nl << "Hazard maps of time " << times.last().name() << " s:" << nl;
+                maps->write(times.last());
+                Info<< endl;
+                profile.mark("hazard maps");
+            }
+            else if (Pstream::parRun() && granflow::keyword::read<bool>(runTime.controlDict(), granflow::keyword::get("controlDict"), "hazardMaps"))
+            {
+                Info<< "hazardMaps yes: skipped in this parallel run: reconstructPar, then gfHazardMaps" << nl;
+            }
+            profile.report(Info);
+            Info<< "End" << nl << endl;
+            members.done();
         }
-        Info<< nl << "Hazard maps of time " << times.last().name() << " s:" << nl;
-        maps->write(times.last());
-        Info<< endl;
-        profile.mark("hazard maps");
+        catch (const Foam::error& e)
+        {
+            if (!members.on()) throw;
+            members.failed(e.message());
+        }
+        catch (const std::exception& e)
+        {
+            if (!members.on()) throw;
+            members.failed(e.what());
+        }
     }
-    else if (Pstream::parRun() && granflow::keyword::read<bool>(runTime.controlDict(), granflow::keyword::get("controlDict"), "hazardMaps"))
-    {
-        Info<< "hazardMaps yes: skipped in this parallel run: reconstructPar, then gfHazardMaps" << nl;
-    }
-    profile.report(Info);
-    Info<< "End" << nl << endl;
     return 0;
 }
