@@ -161,6 +161,22 @@ typedef struct gf_surface gf_surface;
  * components per face from the neighbouring ranks; 0 on success. */
 typedef int (*gf_surface_exchange_fn)(void *ctx, double *field, int ncomp);
 
+/* A face order that keeps neighbouring faces together in memory: order[i]
+ * (i = 0 .. n-1) is the face that comes i-th along a Hilbert curve through
+ * the face centres ([3n]), projected onto the plane of the two coordinate
+ * axes with the largest extent (a terrain's x and y); equal keys in face
+ * order.  The kernel works only on the active set (wet faces and two
+ * rings): numbered in this order, those faces and their edges are a few
+ * runs of consecutive entries, so a step reads whole cache lines and pages
+ * of its arrays and touches (makes resident) few others.  A caller numbers
+ * its faces by it before building gf_surface_mesh (face order[i] becomes
+ * face i, and the edges follow their faces) and maps its fields in and out.
+ * The kernel sums over a face's edges in the order of the edge centres, not
+ * of the edge numbers, so the state is the same bit for bit in any
+ * numbering (sums over faces, such as gf_surface_volume, to round-off).
+ * Errors: a non-finite centre. */
+gf_status gf_surface_face_order(size_t n, const double *centre, int *order);
+
 /* Check the mesh (finite geometry, unit normals, index ranges, kinds) and
  * the configuration; errors name the entry. */
 gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config *cfg,
@@ -192,8 +208,9 @@ void gf_surface_set_edge_exchange(gf_surface *s, gf_surface_edge_exchange_fn fn,
  * at first order, whether the step is halved), on the scale of its
  * tolerance, and with startup_levels > 0 on the start-up's length and the
  * refined meshes' steps.  With it a decomposed run takes the serial run's
- * decisions, and its state equals the serial one to round-off (bitwise
- * when each face lists its edges in the serial order). */
+ * decisions, and its state equals the serial one bit for bit (each face
+ * sums over its edges in the order of their centres, which a processor
+ * edge shares with the serial one). */
 typedef int (*gf_surface_min_fn)(void *ctx, double *v, int n);
 void gf_surface_set_min(gf_surface *s, gf_surface_min_fn fn, void *ctx);
 
@@ -260,6 +277,10 @@ const double *gf_surface_edge_volume(const gf_surface *s);
  * have h = 0 and cannot raise a peak).  Caller-owned arrays [n_faces];
  * call after each gf_surface_step. */
 void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_peak);
+/* The same into arrays in the caller's numbering: kernel face f's peaks go
+ * to entry map[f] (a caller that numbered its faces by
+ * gf_surface_face_order passes that order); map NULL: entry f. */
+void gf_surface_update_peaks_mapped(const gf_surface *s, const int *map, double *h_peak, double *speed_peak);
 
 /* First moments of the owned faces' volume for the centre of mass:
  * out[0] = sum A h, out[1..3] = sum A h x_f (face centres), over the active
@@ -272,7 +293,8 @@ void gf_surface_moments(const gf_surface *s, double out[4]);
  * too. */
 void gf_surface_path_moments(const gf_surface *s, double out[6]);
 
-/* Volume sum_f A_f h_f of the owned faces. */
+/* Volume sum_f A_f h_f of the owned faces: after a step over the active
+ * set (the other faces are dry), before the first over every owned face. */
 double gf_surface_volume(const gf_surface *s);
 
 /* Mass exchange with the bed and obstacles (granflow/mass_exchange.h;

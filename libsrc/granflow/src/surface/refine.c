@@ -114,13 +114,41 @@ gf_status gf_surface_mesh_refine(const gf_surface_mesh *in, gf_surface_refined *
         for (size_t j = 0; j < k; ++j)
             tol = fmin(tol, in->length[fe[s0 + j]]);
         tol *= 1e-9;
+        /* the cycle starts at the edge with the smallest centre (x, y, z),
+         * not at the lowest edge number: the sub-faces, and the sums over
+         * them (areas, restrictions), come in the same order however the
+         * mesh is numbered or decomposed */
+        for (size_t j = 1; j < k; ++j) {
+            const double *x = in->edge_centre + 3 * fe[s0 + j], *y = in->edge_centre + 3 * fe[s0];
+            int before = 0;
+            for (int d = 0; d < 3; ++d)
+                if (x[d] != y[d]) {
+                    before = x[d] < y[d];
+                    break;
+                }
+            if (before) {
+                const int t = fe[s0];
+                fe[s0] = fe[s0 + j], fe[s0 + j] = t;
+            }
+        }
         slot_edge[s0] = fe[s0];
         used[0] = 1;
-        const double *cur = P + 6 * fe[s0] + 3; /* the end point of the first edge */
+        /* round the face from the first edge's larger end point (x, y, z),
+         * whichever way the edge's points are stored */
+        const double *p0 = P + 6 * fe[s0], *p1 = p0 + 3;
+        for (int d = 0; d < 3; ++d)
+            if (p0[d] != p1[d]) {
+                if (p0[d] > p1[d]) {
+                    const double *t = p0;
+                    p0 = p1, p1 = t;
+                }
+                break;
+            }
+        const double *cur = p1;
         for (size_t i = 0; i < k; ++i) {
             memcpy(corner + 3 * (s0 + i), cur, 3 * sizeof(double));
-            if (i + 1 == k) { /* the loop must close on the first edge's start */
-                if (!same_point(cur, P + 6 * slot_edge[s0], tol))
+            if (i + 1 == k) { /* the loop must close on the first edge's other point */
+                if (!same_point(cur, p0, tol))
                     st = gf_fail(GF_EDOM, "surface mesh refinement: the edges of face %zu do not form a closed "
                                           "loop", f);
                 break;

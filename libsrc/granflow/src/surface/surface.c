@@ -40,12 +40,12 @@ void gf_surface_free(gf_surface *s)
     free_lines(s->frame);
     free_lines(s->es);
     free_lines(s->eacc);
-    void *bufs[] = {s->fe_start, s->fe,     s->geo,      s->h,    s->mom,    s->h1,     s->m1,
+    void *bufs[] = {s->fe_start, s->fe,     s->h,    s->mom,    s->h1,     s->m1,
                     s->h2,       s->m2,     s->a,      s->u,      s->pb,       s->grad, s->acc_h,  s->acc_m,
                     s->acc_pn,   s->fh,     s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f, s->act_b, s->neg, s->defer,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
-                    s->fs_other, s->fs_nb, s->fs_geo, s->fs_es, s->pface, s->send_f, s->geo_edge, s->geo_face};
+                    s->fs_other, s->fs_nb, s->fs_geo, s->pface, s->send_f, s->geo_edge, s->geo_face};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
         free(bufs[i]);
     free(s);
@@ -108,6 +108,20 @@ static gf_status check_mesh(const gf_surface_mesh *m)
     return GF_SUCCESS;
 }
 
+/* Edge e's vectors (EG doubles) into ge: L nu_e (the owner's Green–Gauss
+ * weight), edge centre minus owner centre, minus neighbour centre (the
+ * owner's on a boundary edge) */
+static void edge_vectors(const gf_surface_mesh *m, size_t e, double *ge)
+{
+    const double L = m->length[e], *xe = m->edge_centre + 3 * e, *xo = m->centre + 3 * m->owner[e];
+    const double *xn = m->neighbour[e] >= 0 ? m->centre + 3 * m->neighbour[e] : xo;
+    for (int k = 0; k < 3; ++k) {
+        ge[EG_LW + k] = L * m->edge_normal[3 * e + k];
+        ge[EG_RO + k] = xe[k] - xo[k];
+        ge[EG_RN + k] = xe[k] - xn[k];
+    }
+}
+
 /* Edge frame: n_e = (n_o + n_n)/|.|, nu orthogonalised against n_e, t = n_e x nu;
  * nu_L = t x n_o lies in the owner's plane (the rotation of nu about t).
  * Edge e's frame block (EF doubles) into fr and its vectors (EG) into ge. */
@@ -132,13 +146,8 @@ static gf_status edge_geometry(const gf_surface_mesh *m, size_t e, double *fr, d
     cross3(t, nn, nur);
     if (normalise3(t) || normalise3(nul) || normalise3(nur))
         return gf_fail(GF_EDOM, "surface mesh: degenerate frame at edge %zu", e);
-    const double L = m->length[e], *xe = m->edge_centre + 3 * e, *xo = m->centre + 3 * m->owner[e];
-    const double *xn = m->neighbour[e] >= 0 ? m->centre + 3 * m->neighbour[e] : xo;
-    for (int k = 0; k < 3; ++k) {
-        ge[EG_LW + k] = L * m->edge_normal[3 * e + k];
-        ge[EG_RO + k] = xe[k] - xo[k];
-        ge[EG_RN + k] = xe[k] - xn[k];
-    }
+    const double L = m->length[e];
+    edge_vectors(m, e, ge);
     fr[EF_L] = L;
     fr[EF_PO] = L * dot3(nu, no);
     fr[EF_PN] = L * dot3(nu, nn);
@@ -168,11 +177,13 @@ void gf_surface_geometry(gf_surface *s, const int *faces, size_t n)
             continue;
         for (size_t j = s->fe_start[f]; j < s->fe_start[f + 1]; ++j) {
             const int e = s->fe[j];
-            const double *ge = s->geo + EG * e, w = s->fs_nb[j] ? -1.0 : 1.0;
+            const double w = s->fs_nb[j] ? -1.0 : 1.0;
+            double ge[EG];
             if (!s->geo_edge[e]) {
-                (void)edge_geometry(&s->m, (size_t)e, s->frame + EF * e, s->geo + EG * e); /* checked at the set-up */
+                (void)edge_geometry(&s->m, (size_t)e, s->frame + EF * e, ge); /* checked at the set-up */
                 s->geo_edge[e] = 1;
-            }
+            } else
+                edge_vectors(&s->m, (size_t)e, ge);
             double *sg = s->fs_geo + SG * j;
             for (int k = 0; k < 3; ++k) {
                 sg[k] = w * ge[EG_LW + k];
@@ -211,6 +222,16 @@ static void free_lines(double *p)
     free(raw);
 }
 
+/* edge a before edge b in a face's list: by centre (x, y, z), then number */
+static int edge_before(const gf_surface_mesh *m, int a, int b)
+{
+    const double *x = m->edge_centre + 3 * a, *y = m->edge_centre + 3 * b;
+    for (int k = 0; k < 3; ++k)
+        if (x[k] != y[k])
+            return x[k] < y[k];
+    return a < b;
+}
+
 gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config *cfg, gf_surface **out)
 {
     if (!mesh || !cfg || !out)
@@ -235,7 +256,6 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->fe_start = calloc(nt + 1, sizeof *s->fe_start);
     s->fe = malloc((2 * ne + 1) * sizeof *s->fe);
     s->frame = calloc_lines(EF * ne + 1);
-    s->geo = calloc(EG * ne + 1, sizeof *s->geo);
     s->geo_edge = calloc(ne + 1, 1);
     s->geo_face = calloc(nt + 1, 1);
     double **d3[] = {&s->mom, &s->m1, &s->m2, &s->u};
@@ -274,7 +294,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     s->prev_f = malloc(nt * sizeof *s->prev_f);
     s->a_save = malloc(nt * sizeof *s->a_save);
     s->lvl = malloc(nt * sizeof *s->lvl);
-    if (!s->fe_start || !s->fe || !s->frame || !s->geo || !s->geo_edge || !s->geo_face || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
+    if (!s->fe_start || !s->fe || !s->frame || !s->geo_edge || !s->geo_face || !s->mom || !s->m1 || !s->m2 || !s->u || !s->h || !s->h1 || !s->h2 ||
         !s->a || !s->pb || !s->grad || !s->es || !s->acc_h || !s->acc_m || !s->acc_pn || !s->fh || !s->eacc || !s->efmn || !s->spd || !s->ahyd || !s->stat || !s->slow || !s->sedge ||
         !s->first || !s->edge_vol || !s->edge_vol_step || !s->inflow || !s->mark_f || !s->mark_g ||
         !s->mark_e || !s->act_f || !s->ring || !s->act_e || !s->act_b || !s->neg || !s->defer || !s->prev_f || !s->a_save || !s->lvl) {
@@ -309,13 +329,29 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
             s->fe[s->fe_start[n] + fill[n]++] = (int)e;
     }
     free(fill);
+    /* Each face's edges in the order of their centres (x, then y, then z;
+     * equal centres by edge number), not of the edge numbers: the sums over
+     * a face's edges (gradients, fluxes, the step bound) are then made in
+     * the same order however the faces and edges are numbered, so a mesh
+     * renumbered (gf_surface_face_order) or decomposed, whose processor
+     * edges have the same centres on both sides, gives the same results bit
+     * for bit. */
+    for (size_t f = 0; f < nt; ++f)
+        for (size_t j = s->fe_start[f] + 1; j < s->fe_start[f + 1]; ++j) {
+            const int e = s->fe[j];
+            size_t i = j;
+            while (i > s->fe_start[f] && edge_before(mesh, e, s->fe[i - 1])) {
+                s->fe[i] = s->fe[i - 1];
+                --i;
+            }
+            s->fe[i] = e;
+        }
     const size_t ns = s->fe_start[nt];
     s->fs_other = malloc((ns + 1) * sizeof *s->fs_other);
     s->fs_nb = malloc(ns + 1);
     s->fs_geo = calloc(SG * ns + 1, sizeof *s->fs_geo);
     s->pface = calloc(nf + 1, 1);
-    s->fs_es = malloc((ns + 1) * sizeof *s->fs_es);
-    if (!s->fs_other || !s->fs_nb || !s->fs_geo || !s->pface || !s->fs_es) {
+    if (!s->fs_other || !s->fs_nb || !s->fs_geo || !s->pface) {
         gf_surface_free(s);
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
     }
@@ -324,7 +360,6 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
             const int e = s->fe[j], isown = mesh->owner[e] == (int)f;
             s->fs_other[j] = isown ? mesh->neighbour[e] : mesh->owner[e];
             s->fs_nb[j] = (unsigned char)!isown;
-            s->fs_es[j] = 8 * e + (isown ? 0 : 4);
             if (f < nf && s->fs_other[j] >= (int)nf)
                 s->pface[f] = 1;
         }
@@ -340,6 +375,15 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
     return GF_SUCCESS;
 }
 
+/* *p = v, written only where it changes (bit for bit: -0.0 replaces 0.0):
+ * the state arrays come from calloc, whose zero pages become resident only
+ * where they are written, and a terrain is mostly dry */
+static inline void store(double *p, double v)
+{
+    if (memcmp(p, &v, sizeof v))
+        *p = v;
+}
+
 gf_status gf_surface_load_state(gf_surface *s, const double *h, const double *mom, const double *a, int exact)
 {
     const size_t nf = s->m.n_faces;
@@ -351,9 +395,12 @@ gf_status gf_surface_load_state(gf_surface *s, const double *h, const double *mo
         if (!isfinite(h[f]) || h[f] < 0.0)
             return gf_fail(GF_EDOM, "surface scheme: thickness h = %g in face %zu (must be finite, >= 0)", h[f],
                            f);
-        s->h[f] = h[f];
+        /* each entry written only where it changes (store()): the arrays
+         * come from calloc, and the dry faces' zero pages stay unwritten,
+         * not resident */
+        store(s->h + f, h[f]);
         s->h_scale = gmax(s->h_scale, h[f]);
-        double *m = s->mom + 3 * f;
+        double m[3];
         const double *n = s->m.normal + 3 * f;
         for (int k = 0; k < 3; ++k) {
             m[k] = mom ? mom[3 * f + k] : 0.0;
@@ -364,14 +411,15 @@ gf_status gf_surface_load_state(gf_surface *s, const double *h, const double *mo
             if (!isfinite(a[f]) || a[f] < 0.0)
                 return gf_fail(GF_EDOM, "surface scheme: normal acceleration %g in face %zu (must be finite, >= 0)",
                                a[f], f);
-            s->a[f] = a[f];
-            continue;
+            store(s->a + f, a[f]);
+        } else {
+            const double mn = dot3(m, n);
+            for (int k = 0; k < 3; ++k)
+                m[k] = h[f] > s->c.h_dry ? m[k] - mn * n[k] : 0.0;
+            store(s->a + f, s->ahyd[f]);
         }
-        const double mn = dot3(m, n);
         for (int k = 0; k < 3; ++k)
-            m[k] = h[f] > s->c.h_dry ? m[k] - mn * n[k] : 0.0;
-        const double gn = -dot3(s->c.g, n);
-        s->a[f] = gn > 0.0 ? gn : 0.0;
+            store(s->mom + 3 * f + k, m[k]);
     }
     gf_status st;
     double hs = -s->h_scale; /* the positivity tolerance's scale: the same on every rank */
@@ -383,11 +431,14 @@ gf_status gf_surface_load_state(gf_surface *s, const double *h, const double *mo
         return st;
     /* stage buffers equal to the state everywhere (as for faces that leave
      * the active set): a neighbour outside the set reads true values */
-    const size_t nt = s->nt;
-    memcpy(s->h1, s->h, nt * sizeof *s->h1);
-    memcpy(s->h2, s->h, nt * sizeof *s->h2);
-    memcpy(s->m1, s->mom, 3 * nt * sizeof *s->m1);
-    memcpy(s->m2, s->mom, 3 * nt * sizeof *s->m2);
+    for (size_t f = 0; f < s->nt; ++f) {
+        store(s->h1 + f, s->h[f]);
+        store(s->h2 + f, s->h[f]);
+        for (int k = 0; k < 3; ++k) {
+            store(s->m1 + 3 * f + k, s->mom[3 * f + k]);
+            store(s->m2 + 3 * f + k, s->mom[3 * f + k]);
+        }
+    }
     return GF_SUCCESS;
 }
 
@@ -561,15 +612,20 @@ const double *gf_surface_momentum(const gf_surface *s) { return s->mom; }
 const double *gf_surface_pb(const gf_surface *s) { return s->pb; }
 const double *gf_surface_edge_volume(const gf_surface *s) { return s->edge_vol; }
 
-void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_peak)
+void gf_surface_update_peaks_mapped(const gf_surface *s, const int *map, double *h_peak, double *speed_peak)
 {
     for (size_t i = 0; i < s->n_act_owned; ++i) {
-        const int f = s->act_f[i];
+        const int f = s->act_f[i], p = map ? map[f] : f;
         double u[3];
         velocity(s, s->h, s->mom, f, u);
-        h_peak[f] = gmax(h_peak[f], s->h[f]);
-        speed_peak[f] = gmax(speed_peak[f], sqrt(dot3(u, u)));
+        h_peak[p] = gmax(h_peak[p], s->h[f]);
+        speed_peak[p] = gmax(speed_peak[p], sqrt(dot3(u, u)));
     }
+}
+
+void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_peak)
+{
+    gf_surface_update_peaks_mapped(s, NULL, h_peak, speed_peak);
 }
 
 void gf_surface_moments(const gf_surface *s, double out[4])
@@ -585,8 +641,20 @@ void gf_surface_moments(const gf_surface *s, double out[4])
 double gf_surface_volume(const gf_surface *s)
 {
     double v = 0.0;
-    for (size_t f = 0; f < s->m.n_faces; ++f)
+    if (s->scan_all) { /* a state loaded and no step since: the active set is not built */
+        for (size_t f = 0; f < s->m.n_faces; ++f)
+            v += s->m.area[f] * s->h[f];
+        return v;
+    }
+    /* after a step every owned face with h > 0 is in the active set's owned
+     * part, act_f[0, n_act_owned); the other faces are dry (h = 0), so the
+     * dry part of the mesh costs nothing.  The faces wet before the step
+     * come first in increasing order, those that became wet in it after
+     * them: the sum equals the scan over every face to round-off. */
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i];
         v += s->m.area[f] * s->h[f];
+    }
     return v;
 }
 

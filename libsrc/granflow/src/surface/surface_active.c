@@ -133,7 +133,8 @@ gf_status gf_surface_build_active(gf_surface *s)
         s->h1[f] = s->h2[f] = s->h[f];
         memcpy(s->m1 + 3 * f, s->mom + 3 * f, 3 * sizeof *s->m1);
         memcpy(s->m2 + 3 * f, s->mom + 3 * f, 3 * sizeof *s->m2);
-        memset(s->grad + 3 * NV * f, 0, 3 * NV * sizeof *s->grad);
+        if ((size_t)f >= nf || s->pface[f]) /* the only gradients written (the halo's) */
+            memset(s->grad + 3 * NV * f, 0, 3 * NV * sizeof *s->grad);
         memset(s->u + 3 * f, 0, 3 * sizeof *s->u);
         s->slow[f] = 0;
     }

@@ -71,7 +71,7 @@ static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const
 {
     const gf_surface_mesh *m = &s->m;
     const double *fr = s->frame + EF * e, *nu = fr + EF_NU, *t = fr + EF_T, *nul = fr + EF_NUL, *nur = fr + EF_NUR;
-    const double *ge = s->geo + EG * e, L = fr[EF_L]; /* ge: read by side_state only */
+    const double L = fr[EF_L];
     const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
     const unsigned st = s->stamp;
     /* the sums of accumulate: L fh, fp PO, fpn PN, L fm, L fmn */
@@ -126,12 +126,12 @@ static inline __attribute__((always_inline)) void edge_flux(gf_surface *s, const
         double hr, ur[3];
         const int rec = order2 && !s->first[e];
         const int dry_o = H[o] <= s->c.h_dry, dry_n = H[n] <= s->c.h_dry;
-        edge_side(s, H, o, e, 0, ge + EG_RO, rec ? (dry_n ? 2 : 1) : 0, &hl, ul);
-        edge_side(s, H, n, e, 1, ge + EG_RN,
+        edge_side(s, H, o, e, 0, rec ? (dry_n ? 2 : 1) : 0, &hl, ul);
+        edge_side(s, H, n, e, 1,
                   rec && ((size_t)n >= m->n_faces || s->mark_f[n] == st) ? (dry_o ? 2 : 1) : 0, &hr, ur);
         hll(hl, dot3(ul, nul), dot3(ul, t), s->a[o], hr, dot3(ur, nur), dot3(ur, t), s->a[n], F, &fpress);
     } else {
-        edge_side(s, H, o, e, 0, ge + EG_RO, order2 && !s->first[e], &hl, ul);
+        edge_side(s, H, o, e, 0, order2 && !s->first[e], &hl, ul);
         const double un = dot3(ul, nul), ut = dot3(ul, t), p = 0.5 * s->a[o] * hl * hl;
         un_b = un, ut_b = ut;
         if (kind == GF_EDGE_WALL) { /* mirror state: no mass, pressure and reflection */

@@ -50,18 +50,19 @@ struct gf_surface_mx {
 
 #define NV 4 /* reconstructed variables: h, u_x, u_y, u_z */
 /* Per-edge geometry, written once (gf_surface_geometry, when a face of the
- * edge first joins the active set), in two blocks so that each
- * pass reads only what it needs (a face's edges are not adjacent in memory;
- * on meshes larger than the cache the passes are bound by these reads):
+ * edge first joins the active set), so that each pass reads only what it
+ * needs (on meshes larger than the cache the passes are bound by these
+ * reads):
  *  - gf_surface.frame, EF doubles per edge on two cache lines (edge fluxes,
  *    step bound): the frame's nu_L, nu_R (the first line: all the step
  *    bound reads), nu, t, [12] the length, [13], [14] length * nu . n_owner,
  *    length * nu . n_neighbour (the normal part of the edge pressure in
  *    eq. 33);
- *  - gf_surface.geo, EG doubles per edge (the face-slot tables below are
- *    built from it; edge fluxes of ghosts and inactive faces): [0..2]
- *    length * edge normal (the Green–Gauss weight of the owner), [3..5],
- *    [6..8] edge centre minus owner / neighbour centre. */
+ *  - the edge's vectors, EG doubles (edge_vectors in surface.c, from which
+ *    the face-slot tables below are built; not stored per edge: the edge
+ *    fluxes of ghosts and inactive faces take edge centre minus face centre
+ *    from the mesh): [0..2] length * edge normal (the Green–Gauss weight of
+ *    the owner), [3..5], [6..8] edge centre minus owner / neighbour centre. */
 #define EF 16 /* 15 used */
 #define EF_NUL 0
 #define EF_NUR 3
@@ -74,7 +75,7 @@ struct gf_surface_mx {
 #define EG_LW 0
 #define EG_RO 3
 #define EG_RN 6
-/* Per face slot (gf_surface.fe[j], the face's edges in mesh order), SG
+/* Per face slot (gf_surface.fe[j], the face's edges in the order of their centres, gf_surface_alloc), SG
  * doubles in gf_surface.fs_geo, so that the per-face passes read their
  * geometry in one run instead of from each edge's block: [0..2] w L nu_e
  * (the Green–Gauss weight, w = +1 for the edge's owner, -1 for its
@@ -127,13 +128,12 @@ struct gf_surface {
     int *fe;
     int *fs_other;          /* per slot: the face across the edge, -1 on a boundary */
     unsigned char *fs_nb;   /* per slot: the face is the edge's neighbour */
-    int *fs_es;             /* per slot: the offset of the face's side of the edge in gf_surface.es */
     double *fs_geo;         /* SG per slot */
     /* per-edge geometry: frame nu, t, nu_L (owner plane), nu_R (neighbour
-     * plane) (EF per edge), and the kernels' precomputed vectors (EG) */
-    double *frame, *geo;
+     * plane) (EF per edge) */
+    double *frame;
     /* written when a face first joins the active set (gf_surface_geometry):
-     * per edge, its frame and geo blocks; per face, its slots' fs_geo */
+     * per edge, its frame block; per face, its slots' fs_geo */
     unsigned char *geo_edge, *geo_face;
     /* state and stage buffers (nt, 3 nt) */
     double *h, *mom, *h1, *m1, *h2, *m2;
@@ -216,6 +216,13 @@ static inline void velocity(const gf_surface *s, const double *H, const double *
         u[0] = M[3 * f] * r, u[1] = M[3 * f + 1] * r, u[2] = M[3 * f + 2] * r;
     } else
         u[0] = u[1] = u[2] = 0.0;
+}
+
+/* the offset of slot j's side of its edge in gf_surface.es (owner 0,
+ * neighbour 4) */
+static inline size_t es_slot(const gf_surface *s, size_t j)
+{
+    return 8 * (size_t)s->fe[j] + 4 * (size_t)s->fs_nb[j];
 }
 
 #pragma GCC visibility push(hidden) /* the library's own: not exported */

@@ -94,7 +94,7 @@ static inline __attribute__((always_inline)) void gradient_face(gf_surface *s, c
     const v4i rec = wet ? all : lane0;
     for (size_t j = j0; j < j1; ++j) {
         const double *r = sg0 + SG * (j - j0) + 3;
-        double *q = s->es + s->fs_es[j];
+        double *q = s->es + es_slot(s, j);
         const v4d qr = vsel(rec, q0 + (Gx * vsplat(r[0]) + Gy * vsplat(r[1]) + Gz * vsplat(r[2])), q0);
         q[0] = qr[0] < 0.0 ? 0.0 : qr[0];
         q[1] = qr[1], q[2] = qr[2], q[3] = qr[3];
@@ -118,7 +118,7 @@ void gf_surface_gradients(gf_surface *s, const double *H)
          * (the rings of the active set; not for the halo's gradients). */
         if (H[f] == 0.0 && !signbit(H[f]) && !s->pface[f]) {
             for (size_t j = j0; j < j0 + ne; ++j)
-                memset(s->es + s->fs_es[j], 0, 4 * sizeof *s->es);
+                memset(s->es + es_slot(s, j), 0, 4 * sizeof *s->es);
             continue;
         }
         if (ne == 4)

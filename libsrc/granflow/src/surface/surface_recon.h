@@ -34,15 +34,22 @@ static inline void side_state(const gf_surface *s, const double *H, int f, const
 }
 
 /* side_state at edge e for side 0 (owner) or 1 (neighbour): an owned active
- * face's reconstruction as gf_surface_gradients() stored it, else side_state. */
-static inline void edge_side(const gf_surface *s, const double *H, int f, int e, int side, const double *r, int rec,
-                             double *h, double *u)
+ * face's reconstruction as gf_surface_gradients() stored it, else side_state
+ * with r = edge centre - face centre from the mesh (a ghost's, or a face
+ * outside the active set's) */
+static inline void edge_side(const gf_surface *s, const double *H, int f, int e, int side, int rec, double *h,
+                             double *u)
 {
     if (rec == 1 && (size_t)f < s->m.n_faces && s->mark_f[f] == s->stamp) {
         const double *q = s->es + 8 * e + 4 * side;
         *h = q[0];
         u[0] = q[1], u[1] = q[2], u[2] = q[3];
         return;
+    }
+    double r[3];
+    if (rec == 1) {
+        const double *xe = s->m.edge_centre + 3 * e, *xf = s->m.centre + 3 * f;
+        r[0] = xe[0] - xf[0], r[1] = xe[1] - xf[1], r[2] = xe[2] - xf[2];
     }
     side_state(s, H, f, r, rec, h, u);
 }
