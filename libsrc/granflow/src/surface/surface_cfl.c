@@ -113,7 +113,7 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
         edge_speeds4(s, quad);
     }
 #endif
-    /* per face, over its edges in mesh order (as accumulate) */
+    /* per face, over its edges in slot order (as accumulate) */
     double best = HUGE_VAL;
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
