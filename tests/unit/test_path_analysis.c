@@ -598,6 +598,82 @@ static void points_are_located_along_and_across_the_path(void **state)
     assert_close(l, -5, 1e-12); /* the corner, from outside (right of the first leg) */
 }
 
+/* The whole analysis (gf_path_analysis_run, gfPathAnalysis's and the
+ * solver's): the straight path as a GeoJSON line, relative file names in the
+ * base folder; the files written and the summary through the line callback
+ * (sRunout 190 m as above); failures return their status and whole message
+ * to the error callback, call after call in one process (nothing exits) */
+typedef struct { int lines, errors; char last[1024]; } pa_log;
+static void pa_line(void *ctx, const char *t)
+{
+    pa_log *L = ctx;
+    ++L->lines;
+    snprintf(L->last, sizeof L->last, "%s", t);
+}
+static void pa_error(void *ctx, const char *t)
+{
+    pa_log *L = ctx;
+    ++L->errors;
+    snprintf(L->last, sizeof L->last, "%s", t);
+}
+
+static void whole_analysis_writes_its_files_and_returns_its_errors(void **state)
+{
+    (void)state;
+    gf_raster dem, ppr;
+    make_raster("plane.tif", NX, NY, plane, &dem);
+    shift_dx = 0.0;
+    make_raster("ppr.tif", NX, NY, block, &ppr);
+    gf_raster_free(&dem), gf_raster_free(&ppr);
+    FILE *f = fopen(tmp("path.geojson"), "w");
+    assert_non_null(f);
+    fputs("{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
+          "\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[11,61],[291,61]]}}]}", f);
+    fclose(f);
+    size_t nopt;
+    const gf_path_analysis_option *o = gf_path_analysis_options(&nopt);
+    assert_int_equal(nopt, 18);
+    assert_string_equal(o[0].key, "-dem");
+    pa_log L = {0};
+    const gf_path_analysis_io io = {tmpdir, pa_line, NULL, pa_error, &L};
+    const char *ok[] = {"-dem", "plane.tif", "-path", "path.geojson", "-ppr", "ppr.tif", "-width", "40",
+                        "-plots", "no", "-out", "pa"};
+    assert_int_equal(gf_path_analysis_run(6, ok, &io), GF_SUCCESS);
+    assert_int_equal(L.errors, 0);
+    assert_int_equal(L.lines, 4);   /* path, runout, MMPPR; "wrote" */
+    assert_string_equal(L.last, "wrote pa/{pathAnalysis.csv,pathProfile.csv,pathGrid.csv,summary.dat}");
+    f = fopen(tmp("pa/pathAnalysis.csv"), "r");
+    assert_non_null(f);
+    char head[512], row[512];
+    assert_non_null(fgets(head, sizeof head, f));
+    assert_non_null(fgets(row, sizeof row, f));
+    fclose(f);
+    assert_non_null(strstr(row, "run,ppr,1,40,40,190,"));
+    assert_int_equal(access(tmp("pa/summary.dat"), R_OK), 0);
+    /* failures, one after the other */
+    const char *none[] = {"-path", "path.geojson"};
+    assert_int_equal(gf_path_analysis_run(1, none, &io), GF_EINVAL);
+    assert_string_equal(L.last, "-dem is required (-help lists the options)");
+    expect_detail("-dem is required", NULL);
+    const char *high[] = {"-dem", "plane.tif", "-path", "path.geojson", "-ppr", "ppr.tif", "-width", "40",
+                          "-threshold", "100", "-out", "pa"};
+    assert_int_equal(gf_path_analysis_run(6, high, &io), GF_EDOM);
+    assert_non_null(strstr(L.last, "run, -field ppr: "));
+    assert_non_null(strstr(L.last, "exceeds the threshold 100"));
+    const char *missing[] = {"-dem", "plane.tif", "-path", "path.geojson", "-ppr", "nope.tif", "-out", "pa"};
+    assert_int_equal(gf_path_analysis_run(4, missing, &io), GF_EIO);
+    assert_string_equal(L.last, "-ppr nope.tif: no such file or not readable");
+    const char *twice[] = {"-dem", "plane.tif", "-dem", "plane.tif"};
+    assert_int_equal(gf_path_analysis_run(2, twice, &io), GF_EINVAL);
+    assert_string_equal(L.last, "-dem given twice");
+    const char *unknown[] = {"-speed", "1"};
+    assert_int_equal(gf_path_analysis_run(1, unknown, &io), GF_ENOTFOUND);
+    assert_int_equal(L.errors, 5);
+    /* without callbacks: the status and gf_error_detail only */
+    assert_int_equal(gf_path_analysis_run(1, none, NULL), GF_EINVAL);
+    expect_detail("-dem is required", NULL);
+}
+
 int main(void)
 {
     CPLSetConfigOption("CPL_LOG", "/dev/null");
@@ -611,6 +687,7 @@ int main(void)
         cmocka_unit_test(rasters_on_different_grids_are_sampled_each_on_its_own),
         cmocka_unit_test(beta_point_is_where_the_slope_stays_below_ten_degrees),
         cmocka_unit_test(paths_and_points_are_read_through_ogr),
+        cmocka_unit_test(whole_analysis_writes_its_files_and_returns_its_errors),
     };
     const int rc = gf_run_tests("tests", tests, setup, teardown);
     GDALDestroyDriverManager();

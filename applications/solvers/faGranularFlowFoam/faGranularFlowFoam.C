@@ -164,6 +164,12 @@ int main(int argc, char *argv[])
                 maps->write(times.last());
                 Info<< endl;
                 profile.mark("hazard maps");
+                // the path analysis of the maps (controlDict pathAnalysis), the files
+                // gfPathAnalysis writes, in this process (pathAnalysisAtEnd.H)
+                if (granflow::pathAnalysisAtEnd(runTime))
+                {
+                    profile.mark("path analysis");
+                }
             }
             else if (Pstream::parRun() && granflow::keyword::read<bool>(runTime.controlDict(), granflow::keyword::get("controlDict"), "hazardMaps"))
             {

@@ -380,6 +380,10 @@ std::vector<table> makeTables()
              " then gfHazardMaps)"},
             {"hazardMapsThreshold", "scalar", "0.1", "> 0", "m", "",
              "hazardMaps: hPeak of the affected-area outline and area (gfHazardMaps -threshold)"},
+            {"pathAnalysis", "dictionary", "-", "", "", "",
+             "the path analysis of the hazard maps right after them, in the same process (the files"
+             " gfPathAnalysis would write afterwards, byte for byte; controlDict/pathAnalysis); needs"
+             " hazardMaps yes; a failure ends the run with an error (the maps are written)"},
             {"stopCriterion", "word", "none", "none | kineticEnergy", "", "explicit",
              "end condition besides endTime (the cap): kineticEnergy ends the run, writing that time,"
              " once the total kinetic energy 1/2 rho sum A h |Us|^2 falls below stopFraction of its"
@@ -404,6 +408,48 @@ std::vector<table> makeTables()
              "write the mass-averaged path of the energy-line test at the start and every written time"
              " (postProcessing/energyLine: centre of mass, mean |Us|^2, mean horizontal path length;"
              " doc/theory/standard-tests.md section 4); needs a constant mass (no inflow, no mass exchange)"},
+        }
+    });
+
+    T.push_back
+    ({
+        "controlDict/pathAnalysis", "system/controlDict", "pathAnalysis/", "faGranularFlowFoam",
+        "The path analysis at the end of a run, after the hazard maps (hazardMaps yes): gfPathAnalysis's"
+        " analysis (libgranflowTerrain's gf_path_analysis_run) on the maps' rasters, without another"
+        " process; each entry is the gfPathAnalysis option named in its description, and the files"
+        " are those of gfPathAnalysis run in the case folder with these options. Files relative to the"
+        " case. Checked at the start of the run; a parallel run skips it with the maps.",
+        true, "",
+        {
+            {"path", "fileName", "required", "", "", "",
+             "-path: the avalanche path, the first line of a vector file (Inputs/LINES/path_aimec.shp)"},
+            {"split", "fileName", "-", "", "", "",
+             "-split: the split point (Inputs/POINTS/splitPoint.shp): the runout area starts at the beta"
+             " point below it"},
+            {"dem", "fileName", "the case's DEM", "", "", "",
+             "-dem: constant/demWithDam.tif when gfTerrainMesh burnt a dam in, else terrainProperties dem"},
+            {"ppr", "fileName", "postProcessing/hazardMaps/pressurePeak.asc", "", "kPa", "",
+             "-ppr: the peak pressure raster"},
+            {"pft", "fileName", "postProcessing/hazardMaps/hPeak.asc", "", "m", "",
+             "-pft: the peak flow thickness raster"},
+            {"pfv", "fileName", "postProcessing/hazardMaps/speedPeak.asc", "", "m/s", "",
+             "-pfv: the peak flow speed raster"},
+            {"field", "word", "ppr", "ppr | pft | pfv", "", "",
+             "-field: result type of the runout and the comparison (AvaFrame's runoutResType)"},
+            {"threshold", "scalar", "1 (ppr), 0.1 (pft), 1 (pfv)", "", "field's", "",
+             "-threshold: reached where the field is above this (thresholdValue)"},
+            {"width", "scalar", "600", "> 0", "m", "", "-width: domain width across the path (domainWidth)"},
+            {"betaAngle", "scalar", "10", "(0, 90)", "deg", "",
+             "-beta-angle: slope below which the runout area starts (startOfRunoutAreaAngle)"},
+            {"dsMin", "scalar", "30", ">= 0", "m", "",
+             "-ds-min: the slope stays below betaAngle over at least this (dsMin)"},
+            {"refPpr", "fileName", "-", "", "kPa", "", "-ref-ppr: a reference run's peak pressure raster"},
+            {"refPft", "fileName", "-", "", "m", "", "-ref-pft: its peak flow thickness raster"},
+            {"refPfv", "fileName", "-", "", "m/s", "", "-ref-pfv: its peak flow speed raster"},
+            {"name", "string", "run", "", "", "", "-name: the run's name in the CSV (simName)"},
+            {"refName", "string", "reference", "", "", "", "-ref-name: the reference's name"},
+            {"plots", "switch", "yes", "", "", "", "-plots: the PNG plots (gnuplot)"},
+            {"out", "fileName", "postProcessing/pathAnalysis", "", "", "", "-out: the output folder"},
         }
     });
 

@@ -7,7 +7,9 @@
  * Model reference: doc/theory/hazard-analysis.md, sections 1-3 (after
  * AvaFrame's ana3AIMEC, Fischer 2013, NHESS 13, 1655).  The analysis works
  * on rasters (gf_raster, any format GDAL reads), so it reads any tool's peak
- * fields, not only granflow's; a thin program (gfPathAnalysis) wraps it.
+ * fields, not only granflow's; gf_path_analysis_run is the whole analysis with
+ * its files, which the program gfPathAnalysis and faGranularFlowFoam
+ * (controlDict pathAnalysis) call.
  *
  * Conventions (section 1).  The path is a polyline drawn from the release
  * down through the runout.  It is resampled at one point per cell size h of
@@ -187,6 +189,47 @@ void gf_path_locate(size_t n, const double *xy, double x, double y, double *s, d
 /** Read a point: the first point of the first layer of a vector file
  *  (OGR).  Refused like gf_path_read, and for a geometry that is not a point. */
 gf_status gf_point_read(const char *path, double *x, double *y);
+
+/*---------------------------------------------------------- the whole analysis --*/
+
+/** An option of the whole path analysis (gf_path_analysis_run): gfPathAnalysis's
+ *  command-line options, the rows of its -help and -keywords (doc/keywords.md). */
+typedef struct gf_path_analysis_option {
+    const char *key;     /**< "-dem", "-path", ... */
+    const char *type;    /**< file, folder, choice, number, string */
+    const char *dflt;    /**< "required", "-" (optional, none) or the default */
+    const char *allowed; /**< allowed values ("" any) */
+    const char *unit;
+    const char *what;    /**< one-line description */
+} gf_path_analysis_option;
+
+/** The options (*n of them), in gfPathAnalysis's order. */
+const gf_path_analysis_option *gf_path_analysis_options(size_t *n);
+
+/** Where gf_path_analysis_run reads relative file names and sends its
+ *  messages (every member may be 0/NULL). */
+typedef struct gf_path_analysis_io {
+    const char *base; /**< folder of relative file names (NULL: the working directory); the
+                           messages and outputs name the files as given */
+    void (*line)(void *ctx, const char *text);    /**< each line of the log (the summary, "wrote ..."), no newline */
+    void (*warning)(void *ctx, const char *text); /**< a warning (gnuplot failed on a plot) */
+    void (*error)(void *ctx, const char *text);   /**< the whole message of a failure, before the return */
+    void *ctx;
+} gf_path_analysis_io;
+
+/** The whole path analysis of gfPathAnalysis (doc/guide/path-analysis.md):
+ *  the options as n pairs kv[2 i] (the key, "-dem", ...) and kv[2 i + 1] (its
+ *  value), checked; the DEM, the path (and split point) and the rasters read;
+ *  the (s, l) grid, the runouts, indicators and the comparison with a
+ *  reference run (the functions above); pathAnalysis.csv, pathProfile.csv,
+ *  pathGrid.csv, summary.dat and (-plots yes) the gnuplot plots written into
+ *  -out (made when missing).  The summary's lines and "wrote ..." go to
+ *  io->line.  Any failure (an option missing or out of range, a file that
+ *  cannot be read or written, a raster that does not cover the path, nothing
+ *  above the threshold, ...) returns its status with the message of
+ *  gfPathAnalysis (gf_error_detail, and whole to io->error); nothing exits.
+ *  Reentrant apart from GDAL's own state (one call per thread at a time). */
+gf_status gf_path_analysis_run(size_t n, const char *const *kv, const gf_path_analysis_io *io);
 
 #ifdef __cplusplus
 }
