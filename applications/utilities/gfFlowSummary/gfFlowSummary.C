@@ -11,10 +11,13 @@ Description
     speed of the faces with h >= threshold (the deposit inside that curve),
     appended as a row to postProcessing/gfFlowSummary.dat.
     With -csv, also writes postProcessing/profiles/<time>.csv with every face:
-    x,y,z,h,speed,Ux,Uy,Uz[,pb].
+    x,y,z,h,speed,Ux,Uy,Uz[,pb]; -csvTimes '(10 40)' writes those times'
+    files only (the table has every selected time), -csvMinH H only the
+    faces with h >= H.
 
 Usage
     gfFlowSummary [-time ...] [-direction '(1 0 0)'] [-threshold 0.01] [-csv]
+                  [-csvTimes '(T ...)'] [-csvMinH H]
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
@@ -31,6 +34,8 @@ int main(int argc, char *argv[])
     argList::addOption("direction", "vector", "runout direction (default (1 0 0))");
     argList::addOption("threshold", "scalar", "thickness of the runout level curve (0.01 m)");
     argList::addBoolOption("csv", "write every face to postProcessing/profiles/<time>.csv");
+    argList::addOption("csvTimes", "list", "-csv at these times only, e.g. '(10 40 80)' (default: every selected time)");
+    argList::addOption("csvMinH", "scalar", "-csv: only the faces with h >= this [m] (default: every face)");
     granflow::keyword::addOptions();   // -keywords, -version
     if (granflow::keyword::earlyOptions(argc, argv))
     {
@@ -51,6 +56,32 @@ int main(int argc, char *argv[])
     dir /= mag(dir);
     const scalar threshold = args.getOrDefault<scalar>("threshold", 0.01);
     const bool csv = args.found("csv");
+    const bool csvSome = args.found("csvTimes");
+    const scalarList csvTimes(args.getOrDefault<scalarList>("csvTimes", scalarList()));
+    const scalar csvMinH = args.getOrDefault<scalar>("csvMinH", -GREAT);
+    if ((csvSome || args.found("csvMinH")) && !csv)
+    {
+        FatalErrorInFunction << "-csvTimes and -csvMinH go with -csv" << exit(FatalError);
+    }
+    if (csvSome)
+    {
+        // every listed time must be one of the selected times: a typo is an
+        // error, not a missing file
+        for (const scalar t : csvTimes)
+        {
+            bool found = false;
+            for (const instant& i : timeDirs)
+            {
+                found = found || mag(i.value() - t) <= 1e-9*max(mag(t), 1.0);
+            }
+            if (!found)
+            {
+                FatalErrorInFunction
+                    << "-csvTimes: time " << t << " is not among the selected times "
+                    << timeDirs << exit(FatalError);
+            }
+        }
+    }
 
     const fileName outDir = runTime.globalPath()/"postProcessing";
     mkDir(outDir);
@@ -147,7 +178,12 @@ int main(int argc, char *argv[])
             << gMax(h.primitiveField()) << " m, max speed " << gMax(speed) << " m/s, runout "
             << runout << " m" << endl;
 
-        if (csv)
+        bool csvNow = csv && !csvSome;
+        for (const scalar t : csvTimes)
+        {
+            csvNow = csvNow || mag(runTime.value() - t) <= 1e-9*max(mag(t), 1.0);
+        }
+        if (csvNow)
         {
             mkDir(outDir/"profiles");
             OFstream os(outDir/"profiles"/(runTime.timeName() + ".csv"));
@@ -155,6 +191,10 @@ int main(int argc, char *argv[])
             os << "x,y,z,h,speed,Ux,Uy,Uz" << (pb.valid() ? ",pb" : "") << nl;
             forAll(h, i)
             {
+                if (h[i] < csvMinH)
+                {
+                    continue;
+                }
                 const vector& u = Us[i];
                 os << C[i].x() << ',' << C[i].y() << ',' << C[i].z() << ',' << h[i] << ','
                    << speed[i] << ',' << u.x() << ',' << u.y() << ',' << u.z();
