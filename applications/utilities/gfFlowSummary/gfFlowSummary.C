@@ -59,6 +59,16 @@ int main(int argc, char *argv[])
     const bool csvSome = args.found("csvTimes");
     const scalarList csvTimes(args.getOrDefault<scalarList>("csvTimes", scalarList()));
     const scalar csvMinH = args.getOrDefault<scalar>("csvMinH", -GREAT);
+    // a listed time is a written one to the time name's precision
+    auto near = [](const scalar t, const scalar listed) { return mag(t - listed) <= 1e-9*max(mag(listed), 1.0); };
+    auto isCsvTime = [&](const scalar t)
+    {
+        for (const scalar c : csvTimes)
+        {
+            if (near(t, c)) return true;
+        }
+        return false;
+    };
     if ((csvSome || args.found("csvMinH")) && !csv)
     {
         FatalErrorInFunction << "-csvTimes and -csvMinH go with -csv" << exit(FatalError);
@@ -72,7 +82,7 @@ int main(int argc, char *argv[])
             bool found = false;
             for (const instant& i : timeDirs)
             {
-                found = found || mag(i.value() - t) <= 1e-9*max(mag(t), 1.0);
+                found = found || near(i.value(), t);
             }
             if (!found)
             {
@@ -178,12 +188,7 @@ int main(int argc, char *argv[])
             << gMax(h.primitiveField()) << " m, max speed " << gMax(speed) << " m/s, runout "
             << runout << " m" << endl;
 
-        bool csvNow = csv && !csvSome;
-        for (const scalar t : csvTimes)
-        {
-            csvNow = csvNow || mag(runTime.value() - t) <= 1e-9*max(mag(t), 1.0);
-        }
-        if (csvNow)
+        if (csv && (!csvSome || isCsvTime(runTime.value())))
         {
             mkDir(outDir/"profiles");
             OFstream os(outDir/"profiles"/(runTime.timeName() + ".csv"));
