@@ -9,20 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-int gf_parse_number(const char *t, double *v)
-{
-    char *end;
-    while (isspace((unsigned char)*t))
-        ++t;
-    errno = 0;
-    *v = strtod(t, &end);
-    if (end == t)
-        return 0;
-    while (*end && isspace((unsigned char)*end))
-        ++end;
-    return !*end && !errno && isfinite(*v);
-}
-
 int gf_csv_read(const char *path, const char *const *cols, const int *nonneg, int ncols, double **out,
                 size_t *rows, char *err, size_t errsize)
 {

@@ -8,9 +8,7 @@
 
 #include <stddef.h>
 
-/* A whole token as a finite number: surrounding blanks allowed, nothing else
- * ("0.5inf", "1e", "2,5" are not numbers).  1 on success. */
-int gf_parse_number(const char *t, double *v);
+#include "granflow/status.h" /* gf_parse_number: the numbers in the tables */
 
 /* A CSV table with a header naming the columns ('#' lines skipped): every
  * row has one finite number per header column, the first requested column

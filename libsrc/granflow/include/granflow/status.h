@@ -37,6 +37,12 @@ const char *gf_strerror(gf_status status);
  * Empty string when no failure has been recorded. */
 const char *gf_error_detail(void);
 
+/* A whole token as a finite number: surrounding blanks allowed, nothing else
+ * ("0.5inf", "1e", "2,5" are not numbers).  1 on success, 0 otherwise (*v is
+ * then unspecified).  The one number parser of granflow's programs and
+ * files (gfPathAnalysis's options, granflow1d's and the CSV readers'). */
+int gf_parse_number(const char *t, double *v);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,9 +1,12 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 #include "internal.h"
 
+#include <ctype.h>
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 static _Thread_local char gf_detail[512];
 
@@ -43,4 +46,18 @@ gf_status gf_check_range(const char *name, double value, double lo, double hi)
         return gf_fail(GF_EDOM, "%s = %g is outside the allowed range [%g, %g]",
                        name, value, lo, hi);
     return GF_SUCCESS;
+}
+
+int gf_parse_number(const char *t, double *v)
+{
+    char *end;
+    while (isspace((unsigned char)*t))
+        ++t;
+    errno = 0;
+    *v = strtod(t, &end);
+    if (end == t)
+        return 0;
+    while (*end && isspace((unsigned char)*end))
+        ++end;
+    return !*end && !errno && isfinite(*v);
 }

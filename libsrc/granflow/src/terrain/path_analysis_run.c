@@ -10,7 +10,6 @@
 #include "granflow/path_analysis.h"
 #include "internal.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -157,22 +156,6 @@ static gf_status where(const call *C, const char *key, const char *file, char *p
     return GF_SUCCESS;
 }
 
-/* A whole token as a finite number: surrounding blanks allowed, nothing
- * else (gfPathAnalysis's numbers as the other programs read theirs) */
-static int parse_number(const char *t, double *v)
-{
-    char *end;
-    while (isspace((unsigned char)*t))
-        ++t;
-    errno = 0;
-    *v = strtod(t, &end);
-    if (end == t)
-        return 0;
-    while (*end && isspace((unsigned char)*end))
-        ++end;
-    return !*end && !errno && isfinite(*v);
-}
-
 static gf_status num_opt(const call *C, const char *key, double dflt, double lo, double hi, int open_lo,
                          int open_hi, double *x)
 {
@@ -180,7 +163,7 @@ static gf_status num_opt(const call *C, const char *key, double dflt, double lo,
     *x = dflt;
     if (!v)
         return GF_SUCCESS;
-    if (!parse_number(v, x))
+    if (!gf_parse_number(v, x))
         return fail(C, GF_EDOM, "%s '%s' is not a finite number", key, v);
     if ((open_lo ? !(*x > lo) : !(*x >= lo)) || (open_hi ? !(*x < hi) : !(*x <= hi)))
         return fail(C, GF_EDOM, "%s %g outside %s%g, %g%s", key, *x, open_lo ? "(" : "[", lo, hi,
