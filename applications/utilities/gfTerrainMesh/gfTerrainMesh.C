@@ -4,7 +4,9 @@
 
 Description
     A digital elevation model to a terrain-following slab mesh whose top
-    patch is the area mesh of the terrain (makeFaMesh), from
+    patch is the area mesh of the terrain, and that area mesh (constant/faMesh:
+    faceLabels and faBoundary, byte for byte what makeFaMesh writes from
+    constant/faMesh/faMeshDefinition; areaMeshFiles.H), from
     system/terrainDict (entries in terrainCase.H): GDAL reads the DEM (ESRI
     ASCII grid, GeoTIFF, ...), NODATA cells are left out, the mesh can be
     cropped to a box or polygons and coarsened.  One hexahedron per DEM
@@ -13,6 +15,8 @@ Description
     dam (a 3D crown line and a wall slope) raises the DEM before meshing;
     the raised DEM is written to constant/demWithDam.tif.  Patches:
         terrain  the top faces: the area mesh (faMeshDefinition polyMeshPatches)
+                 with its boundary edges on the faPatch whose neighbourPolyPatch
+                 is 'sides'
         sides    the lateral faces: the area mesh's boundary
         base     the bottom faces
     Points are the georeferenced coordinates minus the offset, which is
@@ -33,12 +37,13 @@ Usage
 #include "SubField.H"
 
 #include "terrainCase.H"
+#include "areaMeshFiles.H"
 
 using namespace Foam;
 
 int main(int argc, char *argv[])
 {
-    argList::addNote("DEM (GDAL) to a terrain-following slab mesh; top patch 'terrain' for makeFaMesh");
+    argList::addNote("DEM (GDAL) to a terrain-following slab mesh (top patch 'terrain') and its area mesh (constant/faMesh, as makeFaMesh writes it)");
     argList::noParallel();
     granflow::keyword::addOptions();   // -keywords, -version
     if (granflow::keyword::earlyOptions(argc, argv))
@@ -121,7 +126,7 @@ int main(int argc, char *argv[])
     {
         return I >= 0 && J >= 0 && I < nqi && J < nj - 1 && quad(I, J);
     };
-    label c = 0;
+    label c = 0, nInternalEdges = 0;   // top edges shared by two top faces
     for (label J = 0; J < nj - 1; ++J)
     {
         for (label I = 0; I < nqi; ++I)
@@ -139,9 +144,11 @@ int main(int argc, char *argv[])
             if (!inMesh(I + 1, J)) sides.append(face(labelList({se + b, ne + b, ne, se})));
             if (!inMesh(I, J + 1)) sides.append(face(labelList({sw + b, se + b, se, sw})));
             if (!inMesh(I, J - 1)) sides.append(face(labelList({nw + b, nw, ne, ne + b})));
+            nInternalEdges += label(inMesh(I + 1, J)) + label(inMesh(I, J + 1));
             ++c;
         }
     }
+    const label nBoundaryEdges = sides.size();   // a side face per boundary edge of the top
     patchFaces[2].transfer(sides);
 
     IOstream::defaultPrecision(max(IOstream::defaultPrecision(), 12u));
@@ -157,6 +164,9 @@ int main(int argc, char *argv[])
     {
         FatalErrorInFunction << "writing constant/polyMesh failed" << exit(FatalError);
     }
+    // constant/faMesh as makeFaMesh writes it from faMeshDefinition
+    const bool areaMesh =
+        granflow::writeAreaMesh(runTime, mesh.boundaryMesh(), nInternalEdges, nBoundaryEdges);
     const label iTerrain = mesh.boundaryMesh().findPatchID("terrain");
     const scalar area = gSum(mag(vectorField(mesh.boundaryMesh()[iTerrain].faceAreas())));
 
@@ -182,7 +192,9 @@ int main(int argc, char *argv[])
     Info<< "Wrote constant/polyMesh (" << mesh.nCells() << " cells; patches terrain "
         << mesh.boundaryMesh()[iTerrain].size() << ", sides "
         << mesh.boundaryMesh()[mesh.boundaryMesh().findPatchID("sides")].size() << ", base "
-        << g.n_quads << " faces) and constant/terrainProperties" << nl
+        << g.n_quads << " faces)"
+        << (areaMesh ? ", constant/faMesh (faceLabels, faBoundary: the area mesh of 'terrain')" : "")
+        << " and constant/terrainProperties" << nl
         << "Terrain area " << area << " m2 (plan " << g.n_quads*sqr(g.k*tc.dem.gt[1])
         << " m2), elevations " << zMin << " .. " << zMax << " m" << nl << "End" << endl;
     return 0;
