@@ -25,7 +25,10 @@ Description
     grid).
 
 Usage
-    gfTerrainMesh [-keywords] [-version]
+    gfTerrainMesh [-cellShapes] [-keywords] [-version]
+
+    -cellShapes: the slab through polyMesh's construction from cell shapes
+    (slower, more memory; the same files), the check of the direct one.
 \*---------------------------------------------------------------------------*/
 
 #include "argList.H"
@@ -45,6 +48,12 @@ int main(int argc, char *argv[])
 {
     argList::addNote("DEM (GDAL) to a terrain-following slab mesh (top patch 'terrain') and its area mesh (constant/faMesh, as makeFaMesh writes it)");
     argList::noParallel();
+    argList::addBoolOption
+    (
+        "cellShapes",
+        "build the slab through polyMesh's construction from hexahedral cell shapes (slower; "
+        "the same files: the check of the direct construction, tests/foam/terrain)"
+    );
     granflow::keyword::addOptions();   // -keywords, -version
     if (granflow::keyword::earlyOptions(argc, argv))
     {
@@ -113,52 +122,129 @@ int main(int argc, char *argv[])
         }
     }
 
-    // hexahedra: bottom SW SE NE NW, then top; rows J run southwards
-    const cellModel& hex = cellModel::ref(cellModel::HEX);
-    cellShapeList shapes(g.n_quads);
-    faceListList patchFaces(3);
-    faceList& top = patchFaces[0];
-    faceList& base = patchFaces[1];
-    DynamicList<face> sides;
-    top.setSize(g.n_quads);
-    base.setSize(g.n_quads);
+    // hexahedra: bottom SW SE NE NW, then top; rows J run southwards.  The
+    // faces, owners and neighbours directly, in the order and with the
+    // vertices that polyMesh's construction from hexahedral cell shapes gives
+    // (the same files byte for byte, without its face matching): internal
+    // faces cell by cell, each cell's to higher cells in increasing order of
+    // the neighbour (east: the next cell, then south: the next row), as the
+    // owner's hex face (east 1 2 6 5, south 0 1 5 4 of the cell's vertices
+    // SW SE NE NW bottom, SW SE NE NW top); then the patches terrain (hex
+    // face 4 5 6 7), base (0 3 2 1) and sides (west 0 4 7 3, east, south,
+    // north 3 7 6 2 where no cell is beside), each cell by cell.
     auto inMesh = [&](label I, label J)
     {
         return I >= 0 && J >= 0 && I < nqi && J < nj - 1 && quad(I, J);
     };
-    label c = 0, nInternalEdges = 0;   // top edges shared by two top faces
+    labelList cellOf(nqi*(nj - 1), -1);
+    label nCells = 0, nInternalEdges = 0, nBoundaryEdges = 0;
     for (label J = 0; J < nj - 1; ++J)
     {
         for (label I = 0; I < nqi; ++I)
         {
             if (!quad(I, J)) continue;
-            const label sw = id[I + ni*(J + 1)], se = id[I + 1 + ni*(J + 1)];
-            const label ne = id[I + 1 + ni*J], nw = id[I + ni*J];
-            labelList v({sw + nUsed, se + nUsed, ne + nUsed, nw + nUsed, sw, se, ne, nw});
-            shapes[c] = cellShape(hex, v);
-            top[c] = face(labelList({sw, se, ne, nw}));                    // normal up
-            base[c] = face(labelList({sw + nUsed, nw + nUsed, ne + nUsed, se + nUsed})); // down
-            // lateral faces without a neighbouring cell, normals outwards
-            const label b = nUsed;
-            if (!inMesh(I - 1, J)) sides.append(face(labelList({sw + b, sw, nw, nw + b})));
-            if (!inMesh(I + 1, J)) sides.append(face(labelList({se + b, ne + b, ne, se})));
-            if (!inMesh(I, J + 1)) sides.append(face(labelList({sw + b, se + b, se, sw})));
-            if (!inMesh(I, J - 1)) sides.append(face(labelList({nw + b, nw, ne, ne + b})));
-            nInternalEdges += label(inMesh(I + 1, J)) + label(inMesh(I, J + 1));
-            ++c;
+            cellOf[I + nqi*J] = nCells++;
+            // top edges shared by two top faces (= internal faces), and the
+            // others (= side faces)
+            const label nNgb = label(inMesh(I + 1, J)) + label(inMesh(I, J + 1));
+            nInternalEdges += nNgb;
+            nBoundaryEdges += 4 - nNgb - label(inMesh(I - 1, J)) - label(inMesh(I, J - 1));
         }
     }
-    const label nBoundaryEdges = sides.size();   // a side face per boundary edge of the top
-    patchFaces[2].transfer(sides);
+    const label nInternal = nInternalEdges, nTop = nCells;
+    faceList faces(nInternal + 2*nTop + nBoundaryEdges);
+    labelList owner(faces.size()), neighbour(nInternal);
+    label fi = 0, ft = nInternal, fb = nInternal + nTop, fs = nInternal + 2*nTop;
+    for (label J = 0; J < nj - 1; ++J)
+    {
+        for (label I = 0; I < nqi; ++I)
+        {
+            const label c = cellOf[I + nqi*J];
+            if (c < 0) continue;
+            const label b = nUsed;
+            const label sw = id[I + ni*(J + 1)], se = id[I + 1 + ni*(J + 1)];
+            const label ne = id[I + 1 + ni*J], nw = id[I + ni*J];
+            auto add = [&](label& f, std::initializer_list<label> v)
+            {
+                face& fc = faces[f];
+                fc.setSize(4);
+                label k = 0;
+                for (const label p : v) fc[k++] = p;
+                owner[f] = c;
+                return f++;
+            };
+            if (inMesh(I + 1, J)) neighbour[add(fi, {se + b, ne + b, ne, se})] = cellOf[I + 1 + nqi*J];
+            if (inMesh(I, J + 1)) neighbour[add(fi, {sw + b, se + b, se, sw})] = cellOf[I + nqi*(J + 1)];
+            add(ft, {sw, se, ne, nw});                    // terrain, normal up
+            add(fb, {sw + b, nw + b, ne + b, se + b});    // base, down
+            // lateral faces without a neighbouring cell, normals outwards
+            if (!inMesh(I - 1, J)) add(fs, {sw + b, sw, nw, nw + b});
+            if (!inMesh(I + 1, J)) add(fs, {se + b, ne + b, ne, se});
+            if (!inMesh(I, J + 1)) add(fs, {sw + b, se + b, se, sw});
+            if (!inMesh(I, J - 1)) add(fs, {nw + b, nw, ne, ne + b});
+        }
+    }
+    cellOf.clear();
 
     IOstream::defaultPrecision(max(IOstream::defaultPrecision(), 12u));
-    polyMesh mesh
+    const IOobject meshIO
     (
-        IOobject(polyMesh::defaultRegion, runTime.constant(), runTime, IOobject::NO_READ,
-                 IOobject::AUTO_WRITE),
-        std::move(pts), shapes, patchFaces, wordList({"terrain", "base", "sides"}),
-        wordList({"patch", "patch", "patch"}), "defaultFaces", "patch", wordList()
+        polyMesh::defaultRegion, runTime.constant(), runTime, IOobject::NO_READ, IOobject::AUTO_WRITE
     );
+    const wordList patchNames({"terrain", "base", "sides"});
+    const labelList patchSizes({nTop, nTop, nBoundaryEdges});
+    autoPtr<polyMesh> meshPtr;
+    if (args.found("cellShapes"))
+    {
+        // the cells as hexahedra (bottom SW SE NE NW, then top) and the patch
+        // faces: polyMesh finds the faces and orders them itself
+        const cellModel& hex = cellModel::ref(cellModel::HEX);
+        cellShapeList shapes(nCells);
+        label c = 0;
+        for (label J = 0; J < nj - 1; ++J)
+        {
+            for (label I = 0; I < nqi; ++I)
+            {
+                if (!quad(I, J)) continue;
+                const label sw = id[I + ni*(J + 1)], se = id[I + 1 + ni*(J + 1)];
+                const label ne = id[I + 1 + ni*J], nw = id[I + ni*J], b = nUsed;
+                shapes[c++] = cellShape(hex, labelList({sw + b, se + b, ne + b, nw + b, sw, se, ne, nw}));
+            }
+        }
+        faceListList patchFaces(3);
+        label start = nInternal;
+        forAll(patchFaces, i)
+        {
+            patchFaces[i] = SubList<face>(faces, patchSizes[i], start);
+            start += patchSizes[i];
+        }
+        faces.clear();
+        meshPtr.reset
+        (
+            new polyMesh
+            (
+                meshIO, std::move(pts), shapes, patchFaces, patchNames,
+                wordList(3, "patch"), "defaultFaces", "patch", wordList()
+            )
+        );
+    }
+    else
+    {
+        meshPtr.reset
+        (
+            new polyMesh(meshIO, std::move(pts), std::move(faces), std::move(owner), std::move(neighbour))
+        );
+        List<polyPatch*> patches(3);
+        label start = nInternal;
+        forAll(patches, i)
+        {
+            patches[i] =
+                polyPatch::New("patch", patchNames[i], patchSizes[i], start, i, meshPtr->boundaryMesh()).ptr();
+            start += patchSizes[i];
+        }
+        meshPtr->addPatches(patches);
+    }
+    polyMesh& mesh = meshPtr();
     mesh.removeFiles();
     if (!mesh.write())
     {
