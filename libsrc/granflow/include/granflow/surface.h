@@ -183,6 +183,34 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
                            gf_surface **out);
 void gf_surface_free(gf_surface *s);
 
+/* The edges' length, centre and normal computed by the scheme from the
+ * mesh's points instead of read from the mesh's length, edge_normal and
+ * edge_centre (which may then be NULL), as an OpenFOAM area mesh defines
+ * them (its magLe, edgeCentres and Le, which it would otherwise compute and
+ * keep for every edge): with d = p_end - p_start, the length |d|, the
+ * centre (p_start + p_end)/2, the normal d x n_e (n_e the surface's unit
+ * normal at the edge) turned away from the owner's centre (the side of the
+ * edge centre where (d x n_e) . (x_owner - centre) < 0), scaled to the
+ * length, divided by it.  The scheme computes an edge's geometry when it
+ * needs it (the set-up checks, the order of a face's edges, an edge's first
+ * step in the active set), so a caller keeps no per-edge geometry, and the
+ * results equal those of the mesh with the same values in its arrays, bit
+ * for bit.  Edge e of the mesh is entry i = index[e] of the arrays [0] when
+ * i >= 0, entry -1 - i of the arrays [1] when i < 0 (OpenFOAM keeps the
+ * boundary edges' normals per patch).  points, ends and surface_normal must
+ * outlive the scheme; index is copied.  Not with startup_levels > 0 (the
+ * refined meshes are built from the mesh's own arrays). */
+typedef struct gf_surface_edge_geometry {
+    const int *index;                 /* [n_edges] */
+    const double *points;             /* 3 per point */
+    const int *ends[2];               /* 2 per entry: the edge's start and end point */
+    const double *surface_normal[2];  /* 3 per entry: the surface's unit normal at the edge */
+} gf_surface_edge_geometry;
+
+/* gf_surface_alloc with the edges' geometry from eg (NULL: the mesh's) */
+gf_status gf_surface_alloc_edges(const gf_surface_mesh *mesh, const gf_surface_edge_geometry *eg,
+                                 const gf_surface_config *cfg, gf_surface **out);
+
 /* Halo exchange used by every stage (NULL: serial, no ghosts allowed). */
 void gf_surface_set_exchange(gf_surface *s, gf_surface_exchange_fn fn, void *ctx);
 

@@ -45,7 +45,8 @@ void gf_surface_free(gf_surface *s)
                     s->acc_pn,   s->fh,     s->efmn, s->spd, s->ahyd, s->stat, s->slow, s->sedge, s->first, s->edge_vol,
                     s->edge_vol_step, s->inflow, s->mark_f, s->mark_e, s->mark_g, s->act_f, s->act_b, s->neg, s->defer,
                     s->act_e,    s->ring,     s->prev_f, s->a_save, s->inflow_edges, s->lvl,
-                    s->fs_other, s->fs_nb, s->fs_geo, s->pface, s->send_f, s->geo_edge, s->geo_face};
+                    s->fs_other, s->fs_nb, s->fs_geo, s->pface, s->send_f, s->geo_edge, s->geo_face,
+                    s->len_own, s->eg.index};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
         free(bufs[i]);
     free(s);
@@ -71,11 +72,12 @@ static gf_status check_config(const gf_surface_config *c)
     return gf_friction_check(&c->friction);
 }
 
-static gf_status check_mesh(const gf_surface_mesh *m)
+static gf_status check_mesh(const gf_surface_mesh *m, const struct gf_edge_geo *g)
 {
     const size_t nt = m->n_faces + m->n_ghosts;
-    if (!m->area || !m->centre || !m->normal || !m->owner || !m->neighbour || !m->kind || !m->length ||
-        !m->edge_normal || !m->edge_centre)
+    if (!m->area || !m->centre || !m->normal || !m->owner || !m->neighbour || !m->kind ||
+        (g->index ? !g->points || !g->ends[0] || !g->ends[1] || !g->sn[0] || !g->sn[1]
+                  : !m->length || !m->edge_normal || !m->edge_centre))
         return gf_fail(GF_EINVAL, "surface mesh: a geometry array is missing");
     if (m->n_faces == 0 || nt > (size_t)0x7fffffff || m->n_edges > (size_t)0x7fffffff)
         return gf_fail(GF_EINVAL, "surface mesh: %zu faces, %zu ghosts: need 1 to 2^31 faces", m->n_faces,
@@ -99,10 +101,12 @@ static gf_status check_mesh(const gf_surface_mesh *m)
             return gf_fail(GF_EDOM, "surface mesh: edge %zu has kind %d (allowed 0..3)", e, k);
         if (k == GF_EDGE_INTERNAL ? (nb < 0 || (size_t)nb >= nt || nb == o) : nb != -1)
             return gf_fail(GF_EDOM, "surface mesh: edge %zu (kind %d) has neighbour %d", e, k, nb);
-        if (!(m->length[e] > 0.0) || !isfinite(m->length[e]))
-            return gf_fail(GF_EDOM, "surface mesh: edge %zu has length %g (must be > 0)", e, m->length[e]);
+        double L, xe[3], nu[3];
+        edge_geo(m, g, e, &L, xe, nu);
+        if (!(L > 0.0) || !isfinite(L))
+            return gf_fail(GF_EDOM, "surface mesh: edge %zu has length %g (must be > 0)", e, L);
         for (int j = 0; j < 3; ++j)
-            if (!isfinite(m->edge_normal[3 * e + j]) || !isfinite(m->edge_centre[3 * e + j]))
+            if (!isfinite(nu[j]) || !isfinite(xe[j]))
                 return gf_fail(GF_ENONFINITE, "surface mesh: edge %zu has non-finite geometry", e);
     }
     return GF_SUCCESS;
@@ -111,12 +115,14 @@ static gf_status check_mesh(const gf_surface_mesh *m)
 /* Edge e's vectors (EG doubles) into ge: L nu_e (the owner's Green–Gauss
  * weight), edge centre minus owner centre, minus neighbour centre (the
  * owner's on a boundary edge) */
-static void edge_vectors(const gf_surface_mesh *m, size_t e, double *ge)
+static void edge_vectors(const gf_surface_mesh *m, const struct gf_edge_geo *g, size_t e, double *ge)
 {
-    const double L = m->length[e], *xe = m->edge_centre + 3 * e, *xo = m->centre + 3 * m->owner[e];
+    double L, xe[3], nue[3];
+    edge_geo(m, g, e, &L, xe, nue);
+    const double *xo = m->centre + 3 * m->owner[e];
     const double *xn = m->neighbour[e] >= 0 ? m->centre + 3 * m->neighbour[e] : xo;
     for (int k = 0; k < 3; ++k) {
-        ge[EG_LW + k] = L * m->edge_normal[3 * e + k];
+        ge[EG_LW + k] = L * nue[k];
         ge[EG_RO + k] = xe[k] - xo[k];
         ge[EG_RN + k] = xe[k] - xn[k];
     }
@@ -125,7 +131,8 @@ static void edge_vectors(const gf_surface_mesh *m, size_t e, double *ge)
 /* Edge frame: n_e = (n_o + n_n)/|.|, nu orthogonalised against n_e, t = n_e x nu;
  * nu_L = t x n_o lies in the owner's plane (the rotation of nu about t).
  * Edge e's frame block (EF doubles) into fr and its vectors (EG) into ge. */
-static gf_status edge_geometry(const gf_surface_mesh *m, size_t e, double *fr, double *ge)
+static gf_status edge_geometry(const gf_surface_mesh *m, const struct gf_edge_geo *g, size_t e, double *fr,
+                               double *ge)
 {
     double ne[3];
     const double *no = m->normal + 3 * m->owner[e];
@@ -133,7 +140,8 @@ static gf_status edge_geometry(const gf_surface_mesh *m, size_t e, double *fr, d
     for (int k = 0; k < 3; ++k)
         ne[k] = no[k] + nn[k];
     double *nu = fr + EF_NU, *t = fr + EF_T, *nul = fr + EF_NUL, *nur = fr + EF_NUR;
-    memcpy(nu, m->edge_normal + 3 * e, 3 * sizeof *nu);
+    double L, xe[3];
+    edge_geo(m, g, e, &L, xe, nu);
     if (normalise3(ne))
         return gf_fail(GF_EDOM, "surface mesh: faces across edge %zu have opposite normals", e);
     const double d = dot3(nu, ne);
@@ -146,8 +154,7 @@ static gf_status edge_geometry(const gf_surface_mesh *m, size_t e, double *fr, d
     cross3(t, nn, nur);
     if (normalise3(t) || normalise3(nul) || normalise3(nur))
         return gf_fail(GF_EDOM, "surface mesh: degenerate frame at edge %zu", e);
-    const double L = m->length[e];
-    edge_vectors(m, e, ge);
+    edge_vectors(m, g, e, ge);
     fr[EF_L] = L;
     fr[EF_PO] = L * dot3(nu, no);
     fr[EF_PN] = L * dot3(nu, nn);
@@ -164,7 +171,7 @@ static gf_status check_frames(const gf_surface *s)
     double fr[EF], ge[EG];
     gf_status st;
     for (size_t e = 0; e < s->m.n_edges; ++e)
-        if ((st = edge_geometry(&s->m, e, fr, ge)))
+        if ((st = edge_geometry(&s->m, &s->eg, e, fr, ge)))
             return st;
     return GF_SUCCESS;
 }
@@ -180,10 +187,12 @@ void gf_surface_geometry(gf_surface *s, const int *faces, size_t n)
             const double w = s->fs_nb[j] ? -1.0 : 1.0;
             double ge[EG];
             if (!s->geo_edge[e]) {
-                (void)edge_geometry(&s->m, (size_t)e, s->frame + EF * e, ge); /* checked at the set-up */
+                (void)edge_geometry(&s->m, &s->eg, (size_t)e, s->frame + EF * e, ge); /* checked at the set-up */
+                if (s->len_own)
+                    s->len_own[e] = s->frame[EF * e + EF_L];
                 s->geo_edge[e] = 1;
             } else
-                edge_vectors(&s->m, (size_t)e, ge);
+                edge_vectors(&s->m, &s->eg, (size_t)e, ge);
             double *sg = s->fs_geo + SG * j;
             for (int k = 0; k < 3; ++k) {
                 sg[k] = w * ge[EG_LW + k];
@@ -223,9 +232,11 @@ static void free_lines(double *p)
 }
 
 /* edge a before edge b in a face's list: by centre (x, y, z), then number */
-static int edge_before(const gf_surface_mesh *m, int a, int b)
+static int edge_before(const gf_surface_mesh *m, const struct gf_edge_geo *g, int a, int b)
 {
-    const double *x = m->edge_centre + 3 * a, *y = m->edge_centre + 3 * b;
+    double la, lb, x[3], y[3];
+    edge_geo(m, g, (size_t)a, &la, x, NULL);
+    edge_geo(m, g, (size_t)b, &lb, y, NULL);
     for (int k = 0; k < 3; ++k)
         if (x[k] != y[k])
             return x[k] < y[k];
@@ -234,11 +245,29 @@ static int edge_before(const gf_surface_mesh *m, int a, int b)
 
 gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config *cfg, gf_surface **out)
 {
+    return gf_surface_alloc_edges(mesh, NULL, cfg, out);
+}
+
+gf_status gf_surface_alloc_edges(const gf_surface_mesh *mesh, const gf_surface_edge_geometry *eg,
+                                 const gf_surface_config *cfg, gf_surface **out)
+{
     if (!mesh || !cfg || !out)
         return gf_fail(GF_EINVAL, "gf_surface_alloc: null argument");
     *out = NULL;
     gf_status st;
-    if ((st = check_config(cfg)) || (st = check_mesh(mesh)))
+    struct gf_edge_geo g = {NULL, NULL, {NULL, NULL}, {NULL, NULL}};
+    if (eg) {
+        if (!eg->index)
+            return gf_fail(GF_EINVAL, "gf_surface_alloc_edges: no edge index");
+        if (cfg->startup_levels > 0)
+            return gf_fail(GF_EINVAL, "surface scheme: startup_levels = %d needs the mesh's own edge arrays (not "
+                                      "gf_surface_alloc_edges)", cfg->startup_levels);
+        g.index = (int *)(uintptr_t)eg->index; /* the caller's until copied below */
+        g.points = eg->points;
+        for (int k = 0; k < 2; ++k)
+            g.ends[k] = eg->ends[k], g.sn[k] = eg->surface_normal[k];
+    }
+    if ((st = check_config(cfg)) || (st = check_mesh(mesh, &g)))
         return st;
     if (cfg->startup_levels > 0 && !mesh->edge_points)
         return gf_fail(GF_EINVAL, "surface scheme: startup_levels = %d needs the mesh's edge_points (the end "
@@ -250,6 +279,9 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
     s->scan_all = 1; /* (and after every gf_surface_load_state) */
     s->m = *mesh;
+    s->eg = g;
+    s->eg.index = NULL;
+    s->len = mesh->length;
     s->c = *cfg;
     s->gmag = sqrt(dot3(cfg->g, cfg->g));
     const size_t nt = s->nt = mesh->n_faces + mesh->n_ghosts, ne = mesh->n_edges, nf = mesh->n_faces;
@@ -302,7 +334,13 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory for %zu faces", nt);
     }
     s->inflow_edges = malloc((ne + 1) * sizeof *s->inflow_edges);
-    if (!s->inflow_edges) {
+    if (g.index) { /* the index copied; the lengths written with the frames */
+        s->eg.index = malloc((ne + 1) * sizeof *s->eg.index);
+        s->len = s->len_own = calloc(ne + 1, sizeof *s->len_own);
+        if (s->eg.index)
+            memcpy(s->eg.index, g.index, ne * sizeof *s->eg.index);
+    }
+    if (!s->inflow_edges || (g.index && (!s->eg.index || !s->len_own))) {
         gf_surface_free(s);
         return gf_fail(GF_ENOMEM, "surface scheme: out of memory");
     }
@@ -340,7 +378,7 @@ gf_status gf_surface_alloc(const gf_surface_mesh *mesh, const gf_surface_config 
         for (size_t j = s->fe_start[f] + 1; j < s->fe_start[f + 1]; ++j) {
             const int e = s->fe[j];
             size_t i = j;
-            while (i > s->fe_start[f] && edge_before(mesh, e, s->fe[i - 1])) {
+            while (i > s->fe_start[f] && edge_before(&s->m, &s->eg, e, s->fe[i - 1])) {
                 s->fe[i] = s->fe[i - 1];
                 --i;
             }
@@ -508,7 +546,7 @@ static gf_status stage(gf_surface *s, double dt, double *H, double *M, double *H
     /* boundary volumes of this stage */
     for (size_t i = 0; i < s->n_act_b; ++i) {
         const int e = s->act_b[i];
-        s->edge_vol_step[e] += weight * dt * m->length[e] * s->fh[e];
+        s->edge_vol_step[e] += weight * dt * s->len[e] * s->fh[e];
     }
     return gf_surface_update_faces(s, dt, H, M, Ho, Mo);
 }

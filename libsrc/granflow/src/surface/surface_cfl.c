@@ -44,7 +44,7 @@ static void edge_speeds4(gf_surface *s, const int *q)
     const v4d cl = __builtin_ia32_sqrtpd256(al * hl), cr = __builtin_ia32_sqrtpd256(ar * hr);
     v4d sl, sr;
     hll_speeds4(hl, ul, cl, hr, ur, cr, &sl, &sr);
-    const v4d L = {m->length[q[0]], m->length[q[1]], m->length[q[2]], m->length[q[3]]};
+    const v4d L = {s->len[q[0]], s->len[q[1]], s->len[q[2]], s->len[q[3]]};
     const v4d out = L * vmax(zero, sr), in = L * vmax(zero, -sl);
     for (int k = 0; k < 4; ++k) {
         s->spd[2 * q[k]] = out[k];
@@ -103,8 +103,8 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
         }
         double sl, sr;
         hll_speeds(hl, ul, cl, hr, ur, cr, &sl, &sr);
-        s->spd[2 * e] = m->length[e] * gmax(0.0, sr);
-        s->spd[2 * e + 1] = m->length[e] * gmax(0.0, -sl);
+        s->spd[2 * e] = s->len[e] * gmax(0.0, sr);
+        s->spd[2 * e + 1] = s->len[e] * gmax(0.0, -sl);
     }
 #ifdef __AVX__
     if (nq > 0) { /* the last internal edges, padded with the first (its rates written twice, alike) */

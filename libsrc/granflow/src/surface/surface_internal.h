@@ -110,8 +110,25 @@ static inline void prefetch_block(const double *p, int n, int write)
     }
 }
 
+/* Where the edges' length, unit normal and centre come from: the mesh's
+ * arrays (index NULL), or computed from the points (gf_surface_alloc_edges:
+ * edge e is entry index[e] of ends[0], sn[0], or -1 - index[e] of ends[1],
+ * sn[1]) */
+struct gf_edge_geo {
+    int *index;
+    const double *points;
+    const int *ends[2];
+    const double *sn[2];
+};
+
 struct gf_surface {
     gf_surface_mesh m;
+    struct gf_edge_geo eg;
+    /* per edge, its length, where the passes read it (step bound, boundary
+     * volumes): the mesh's array, or len_own, written with the edge's frame
+     * (gf_surface_geometry) */
+    const double *len;
+    double *len_own;
     gf_surface_config c;
     size_t nt; /* owned + ghost faces */
     gf_surface_exchange_fn xfn;
@@ -205,6 +222,50 @@ static inline int normalise3(double *a)
         return -1;
     a[0] /= l, a[1] /= l, a[2] /= l;
     return 0;
+}
+
+/* Edge e's length *L, centre xc[3] and, unless nu is NULL, unit normal
+ * nu[3] in the surface (owner -> out): the mesh's, or from the points
+ * (gf_surface_alloc_edges: OpenFOAM's magLe, edgeCentres and Le / magLe,
+ * the same operations in the same order).  A degenerate edge (zero length,
+ * or d x n_e = 0) gives a zero normal, without a division by zero
+ * (OpenFOAM traps floating-point exceptions); the set-up refuses it. */
+static inline void edge_geo(const gf_surface_mesh *m, const struct gf_edge_geo *g, size_t e, double *L,
+                            double *xc, double *nu)
+{
+    if (!g->index) {
+        const double *c = m->edge_centre + 3 * e;
+        *L = m->length[e];
+        xc[0] = c[0], xc[1] = c[1], xc[2] = c[2];
+        if (nu)
+            memcpy(nu, m->edge_normal + 3 * e, 3 * sizeof *nu);
+        return;
+    }
+    const int j = g->index[e], k = j < 0;
+    const size_t i = j < 0 ? (size_t)(-1 - j) : (size_t)j;
+    const int *pe = g->ends[k] + 2 * i;
+    const double *a = g->points + 3 * (size_t)pe[0], *b = g->points + 3 * (size_t)pe[1];
+    const double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    *L = l;
+    for (int q = 0; q < 3; ++q)
+        xc[q] = 0.5 * (a[q] + b[q]);
+    if (!nu)
+        return;
+    const double *n = g->sn[k] + 3 * i, *xo = m->centre + 3 * m->owner[e];
+    double v[3] = {d[1] * n[2] - d[2] * n[1], d[2] * n[0] - d[0] * n[2], d[0] * n[1] - d[1] * n[0]};
+    const double s = v[0] * (xo[0] - xc[0]) + v[1] * (xo[1] - xc[1]) + v[2] * (xo[2] - xc[2]);
+    const double sg = s >= 0.0 ? -1.0 : 1.0; /* away from the owner */
+    for (int q = 0; q < 3; ++q)
+        v[q] *= sg;
+    const double vm = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(vm > 0.0) || !(l > 0.0)) {
+        nu[0] = nu[1] = nu[2] = 0.0;
+        return;
+    }
+    const double r = l / vm; /* Le, of length |d| */
+    for (int q = 0; q < 3; ++q)
+        nu[q] = v[q] * r / l;
 }
 
 /* the velocity of face f in the stage state (H, M): M / H where wet, else 0 */

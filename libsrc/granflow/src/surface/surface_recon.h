@@ -48,7 +48,9 @@ static inline void edge_side(const gf_surface *s, const double *H, int f, int e,
     }
     double r[3];
     if (rec == 1) {
-        const double *xe = s->m.edge_centre + 3 * e, *xf = s->m.centre + 3 * f;
+        double L, xe[3];
+        edge_geo(&s->m, &s->eg, (size_t)e, &L, xe, NULL);
+        const double *xf = s->m.centre + 3 * f;
         r[0] = xe[0] - xf[0], r[1] = xe[1] - xf[1], r[2] = xe[2] - xf[2];
     }
     side_state(s, H, f, r, rec, h, u);
