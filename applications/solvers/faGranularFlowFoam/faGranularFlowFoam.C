@@ -78,6 +78,7 @@ Usage
 #include "repeatStep.H"
 #include "energyLine.H"
 #include "memberRuns.H"
+#include "createMeshes.H"
 
 int main(int argc, char *argv[])
 {
@@ -99,10 +100,11 @@ int main(int argc, char *argv[])
     // createTime.H's Time, whose case can move to an ensemble member's (memberRuns.H)
     granflow::memberTime runTime(Foam::Time::controlDictName, args);
     setupProfile.mark("start and controls");
-    #include "createMesh.H"
-    setupProfile.mark("volume mesh");
-    #include "createFaMesh.H"
-    setupProfile.mark("area mesh");
+    // the volume mesh, only what the area mesh needs of it in a serial run,
+    // and the area mesh (createMeshes.H)
+    granflow::areaMeshes meshes(runTime, setupProfile);
+    fvMesh& mesh = meshes.mesh();
+    faMesh& aMesh = meshes.aMesh();
     // -members FILE: the listed cases run back to back on these meshes
     // (memberRuns.H, an ensemble worker); without it, one run of this case
     granflow::memberRuns members(args, runTime);
