@@ -115,10 +115,9 @@ static gf_status check_mesh(const gf_surface_mesh *m, const struct gf_edge_geo *
 /* Edge e's vectors (EG doubles) into ge: L nu_e (the owner's Green–Gauss
  * weight), edge centre minus owner centre, minus neighbour centre (the
  * owner's on a boundary edge) */
-static void edge_vectors(const gf_surface_mesh *m, const struct gf_edge_geo *g, size_t e, double *ge)
+static void edge_vectors_of(const gf_surface_mesh *m, size_t e, double L, const double *xe, const double *nue,
+                            double *ge)
 {
-    double L, xe[3], nue[3];
-    edge_geo(m, g, e, &L, xe, nue);
     const double *xo = m->centre + 3 * m->owner[e];
     const double *xn = m->neighbour[e] >= 0 ? m->centre + 3 * m->neighbour[e] : xo;
     for (int k = 0; k < 3; ++k) {
@@ -126,6 +125,13 @@ static void edge_vectors(const gf_surface_mesh *m, const struct gf_edge_geo *g, 
         ge[EG_RO + k] = xe[k] - xo[k];
         ge[EG_RN + k] = xe[k] - xn[k];
     }
+}
+
+static void edge_vectors(const gf_surface_mesh *m, const struct gf_edge_geo *g, size_t e, double *ge)
+{
+    double L, xe[3], nue[3];
+    edge_geo(m, g, e, &L, xe, nue);
+    edge_vectors_of(m, e, L, xe, nue, ge);
 }
 
 /* Edge frame: n_e = (n_o + n_n)/|.|, nu orthogonalised against n_e, t = n_e x nu;
@@ -140,8 +146,9 @@ static gf_status edge_geometry(const gf_surface_mesh *m, const struct gf_edge_ge
     for (int k = 0; k < 3; ++k)
         ne[k] = no[k] + nn[k];
     double *nu = fr + EF_NU, *t = fr + EF_T, *nul = fr + EF_NUL, *nur = fr + EF_NUR;
-    double L, xe[3];
-    edge_geo(m, g, e, &L, xe, nu);
+    double L, xe[3], nue[3];
+    edge_geo(m, g, e, &L, xe, nue);
+    memcpy(nu, nue, sizeof nue);
     if (normalise3(ne))
         return gf_fail(GF_EDOM, "surface mesh: faces across edge %zu have opposite normals", e);
     const double d = dot3(nu, ne);
@@ -154,7 +161,7 @@ static gf_status edge_geometry(const gf_surface_mesh *m, const struct gf_edge_ge
     cross3(t, nn, nur);
     if (normalise3(t) || normalise3(nul) || normalise3(nur))
         return gf_fail(GF_EDOM, "surface mesh: degenerate frame at edge %zu", e);
-    edge_vectors(m, g, e, ge);
+    edge_vectors_of(m, e, L, xe, nue, ge);
     fr[EF_L] = L;
     fr[EF_PO] = L * dot3(nu, no);
     fr[EF_PN] = L * dot3(nu, nn);
@@ -686,9 +693,8 @@ double gf_surface_volume(const gf_surface *s)
     }
     /* after a step every owned face with h > 0 is in the active set's owned
      * part, act_f[0, n_act_owned); the other faces are dry (h = 0), so the
-     * dry part of the mesh costs nothing.  The faces wet before the step
-     * come first in increasing order, those that became wet in it after
-     * them: the sum equals the scan over every face to round-off. */
+     * dry part of the mesh costs nothing.  They are in increasing order
+     * (gf_surface_build_active): the sum is the scan over every face's. */
     for (size_t i = 0; i < s->n_act_owned; ++i) {
         const int f = s->act_f[i];
         v += s->m.area[f] * s->h[f];

@@ -67,8 +67,8 @@ gf_status gf_surface_build_active(gf_surface *s)
         /* A step changes only the owned active faces, and every other owned
          * face is dry (h = 0, it would be active otherwise): the owned faces
          * with h > 0 are among the previous set's, listed in increasing
-         * order as the full scan lists them (the previously wet ones are
-         * a sorted run, the few that became wet follow), so a step costs
+         * order as the full scan lists them (the previous set's owned faces
+         * are sorted, below; sort_faces then only checks), so a step costs
          * nothing on the dry part of the mesh.  Ghosts, which another rank
          * updates, are all scanned. */
         for (size_t i = 0; i < s->n_prev_owned; ++i)
@@ -119,6 +119,12 @@ gf_status gf_surface_build_active(gf_surface *s)
         if ((size_t)s->ring[i] < nf)
             s->act_f[s->n_act_f++] = s->ring[i];
     s->n_act_owned = s->n_act_f;
+    /* The owned active faces in increasing order (the wet ones are, the
+     * rings are merged in; s->neg is free scratch here): the passes over
+     * them, and over their edges (listed in this order below), then walk
+     * the arrays forwards instead of returning for the rings.  avaHelix:
+     * the time loop 0.96 of its CPU time (farm-bench, paired runs). */
+    sort_faces(s->act_f, s->n_act_f, s->neg);
     for (size_t i = 0; i < nr; ++i)
         if ((size_t)s->ring[i] >= nf)
             s->act_f[s->n_act_f++] = s->ring[i];
