@@ -147,6 +147,7 @@ int main(int argc, char *argv[])
                 // the mass exchange is the explicit scheme's (a per-step update of
                 // its kernel): massExchange simType other than null is refused here
                 granflow::readMassExchange(granularProperties, "implicit");
+                #include "implicitFields.H"
                 #include "implicitLoop.H"
                 profile.mark("time loop");
             }
