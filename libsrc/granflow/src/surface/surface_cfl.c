@@ -76,6 +76,12 @@ gf_status gf_surface_max_dt(gf_surface *s, double *dt)
         if (i + PF_DIST < s->n_act_e)
             prefetch_block(s->frame + EF * s->act_e[i + PF_DIST], 6, 0);
         const int o = m->owner[e], n = m->neighbour[e], kind = m->kind[e];
+        if (kind == GF_EDGE_INTERNAL && s->h[o] <= 0.0 && s->h[n] <= 0.0) {
+            /* both sides dry: no outgoing wave (hll_speeds' 0, 0), and the
+             * per-face sums below are the same with +0 as with its -0 */
+            s->spd[2 * e] = s->spd[2 * e + 1] = 0.0;
+            continue;
+        }
 #ifdef __AVX__
         if (kind == GF_EDGE_INTERNAL) {
             quad[nq++] = e;

@@ -404,6 +404,16 @@ gf_status gf_surface_edge_fluxes(gf_surface *s, const double *H, double dt, int 
             if (n >= 0)
                 s->stat[n] = 0;
         }
+        if (se && H[o] <= 0.0 && H[n] <= 0.0) {
+            /* both sides dry (the rings of the active set): every flux and
+             * pressure of the static edge is 0 (h = 0, u = 0), written as
+             * such instead of computed; the sums of a face with material
+             * are the same, a dry face's differ at most in the sign of a
+             * zero, which its update does not read */
+            memset(s->eacc + EA * e, 0, EA * sizeof *s->eacc);
+            s->fh[e] = 0.0;
+            continue;
+        }
 #ifdef __AVX__
         if (plain) { /* four at a time */
             quad[nq++] = e;
