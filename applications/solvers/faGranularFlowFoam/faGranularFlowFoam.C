@@ -79,6 +79,7 @@ Usage
 #include "energyLine.H"
 #include "memberRuns.H"
 #include "createMeshes.H"
+#include "releaseFreedMemory.H"
 
 int main(int argc, char *argv[])
 {
