@@ -269,6 +269,12 @@ gf_status gf_surface_alloc_edges(const gf_surface_mesh *mesh, const gf_surface_e
         if (cfg->startup_levels > 0)
             return gf_fail(GF_EINVAL, "surface scheme: startup_levels = %d needs the mesh's own edge arrays (not "
                                       "gf_surface_alloc_edges)", cfg->startup_levels);
+        const void *arg[] = {eg->points, eg->ends[0], eg->ends[1], eg->surface_normal[0], eg->surface_normal[1]};
+        static const char *const arg_name[] = {"points", "ends[0]", "ends[1]", "surface_normal[0]",
+                                               "surface_normal[1]"};
+        for (int k = 0; k < 5; ++k)
+            if (!arg[k])
+                return gf_fail(GF_EINVAL, "gf_surface_alloc_edges: no edge geometry %s (NULL)", arg_name[k]);
         g.index = (int *)(uintptr_t)eg->index; /* the caller's until copied below */
         g.points = eg->points;
         for (int k = 0; k < 2; ++k)
