@@ -210,8 +210,10 @@ static void bad_polygons_are_refused_naming_file_and_attribute(void **state)
     gf_polygons p;
     assert_int_equal(gf_polygons_read(geojson(""), "depth", 0, &p), GF_ENOTFOUND);
     assert_true(strstr(gf_error_detail(), "depth") && strstr(gf_error_detail(), "thickness"));
-    assert_int_equal(gf_polygons_read(geojson(",\"name\":\"a\""), "name", 0, &p), GF_ENOTFOUND);
-    assert_true(strstr(gf_error_detail(), "non-numeric") != NULL);
+    /* a text field: named as one, not as a missing value */
+    assert_int_equal(gf_polygons_read(geojson(",\"name\":\"a\""), "name", 0, &p), GF_EDOM);
+    assert_true(strstr(gf_error_detail(), "field 'name' of ") != NULL);
+    assert_true(strstr(gf_error_detail(), "is a text field (String); a number is needed") != NULL);
     const char *neg = tmp("neg.geojson");
     write_text(neg, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":"
                     "{\"thickness\":-1},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":"
@@ -405,7 +407,7 @@ static void plane_dem(const char *name, double z0, double gx, gf_raster *dem)
 
 #define TAN60 1.7320508075688772
 
-/* specification section 3: on flat ground at 100 m, a straight crown line
+/* doc/theory/mass-exchange.md, section 3: on flat ground at 100 m, a straight crown line
  * x = 20.5 at elevation 105 (H = 5 m above ground), wall slope 60 deg:
  * exactly 105 on the line, 105 - tan(60) d at distance d = 1, 2, the ground
  * from d = 3 (105 - 3 tan 60 < 100) on; a short line has rounded ends */
@@ -571,6 +573,71 @@ static void avakot_dam_is_read_and_burned(void **state)
     gf_dam_free(&d);
 }
 
+/* The checks of a case's inputs (gfCheckInputs): a vector file's CRS, a
+ * numeric attribute, extents that overlap */
+static void input_checks_name_the_crs_the_field_type_and_the_overlap(void **state)
+{
+    (void)state;
+    /* the CRS of the avaHelix release (MGI / Austria Lambert) and of a
+     * GeoJSON without one (RFC 7946: WGS 84, which OGR reports) */
+    char *wkt = NULL;
+    assert_int_equal(gf_vector_crs(HELIX_REL, &wkt), GF_SUCCESS);
+    assert_true(strstr(wkt, "Austria Lambert") != NULL);
+    gf_raster dem;
+    assert_int_equal(gf_raster_read(HELIX, &dem), GF_SUCCESS);
+    assert_int_equal(gf_crs_same(wkt, dem.wkt), 1);
+    free(wkt);
+    const char *shp = tmp("nocrs.csv");
+    write_text(shp, "id,thickness,WKT\n1,1.5,\"POLYGON ((0 0,1 0,1 1,0 0))\"\n");
+    assert_int_equal(gf_vector_crs(shp, &wkt), GF_SUCCESS);
+    assert_string_equal(wkt, "");
+    free(wkt);
+    assert_int_equal(gf_vector_crs(tmp("missing.shp"), &wkt), GF_EIO);
+    assert_true(strstr(gf_error_detail(), "missing.shp") != NULL);
+    assert_null(wkt);
+
+    /* a numeric attribute: real and integer pass; a text field is named as
+     * one with the number needed; a missing one lists the numeric fields */
+    const char *p = geojson(",\"name\":\"a\",\"n\":3");
+    assert_int_equal(gf_vector_field_numeric(p, "thickness", "a number in metres"), GF_SUCCESS);
+    assert_int_equal(gf_vector_field_numeric(p, "n", NULL), GF_SUCCESS);
+    assert_int_equal(gf_vector_field_numeric(p, "name", "a number in metres"), GF_EDOM);
+    char expect[512];
+    snprintf(expect, sizeof expect, "field 'name' of %s is a text field (String); a number in metres"
+                                    " is needed", p);
+    assert_string_equal(gf_error_detail(), expect);
+    assert_int_equal(gf_vector_field_numeric(p, "depth", NULL), GF_ENOTFOUND);
+    assert_true(strstr(gf_error_detail(), p) && strstr(gf_error_detail(), "'depth'"));
+    assert_true(strstr(gf_error_detail(), "thickness, n") != NULL);
+    assert_null(strstr(gf_error_detail(), "name"));
+    assert_int_equal(gf_vector_field_numeric(tmp("missing.shp"), "thickness", NULL), GF_EIO);
+
+    /* extents: the avaHelix DEM's pixels (centres 1000 .. 6000, -5000 ..
+     * -3000, 5 m) reach half a pixel beyond its centres */
+    double box[4];
+    gf_raster_extent(&dem, box);
+    assert_close(box[0], 997.5, 1e-9);
+    assert_close(box[1], -5002.5, 1e-9);
+    assert_close(box[2], 6002.5, 1e-9);
+    assert_close(box[3], -2997.5, 1e-9);
+    const double inside[4] = {2000, -4000, 2100, -3900}, across[4] = {6000, -3000, 7000, -2000};
+    const double edge[4] = {6002.5, -3000, 7000, -2000}, beyond[4] = {6002.6, -4000, 7000, -3900};
+    const double nan_box[4] = {NAN, -4000, 2100, -3900};
+    assert_int_equal(gf_box_overlap(inside, box), 1);
+    assert_int_equal(gf_box_overlap(box, inside), 1);
+    assert_int_equal(gf_box_overlap(across, box), 1);
+    assert_int_equal(gf_box_overlap(edge, box), 1);
+    assert_int_equal(gf_box_overlap(beyond, box), 0);
+    assert_int_equal(gf_box_overlap(box, beyond), 0);
+    assert_int_equal(gf_box_overlap(nan_box, box), 0);
+    /* the avaHelix release lies on its DEM */
+    gf_polygons rel;
+    assert_int_equal(gf_polygons_read(HELIX_REL, "thickness", 0, &rel), GF_SUCCESS);
+    assert_int_equal(gf_box_overlap(rel.box, box), 1);
+    gf_polygons_free(&rel);
+    gf_raster_free(&dem);
+}
+
 int main(void)
 {
     CPLSetConfigOption("CPL_LOG", "/dev/null");
@@ -587,6 +654,7 @@ int main(void)
         cmocka_unit_test(dam_on_sloping_ground_follows_the_crown_elevation),
         cmocka_unit_test(bad_dams_are_refused_with_the_reason),
         cmocka_unit_test(avakot_dam_is_read_and_burned),
+        cmocka_unit_test(input_checks_name_the_crs_the_field_type_and_the_overlap),
     };
     const int rc = gf_run_tests("tests", tests, setup, teardown);
     GDALDestroyDriverManager();

@@ -93,6 +93,32 @@ double gf_polygons_area(const gf_polygons *p, size_t k);
  * -1 when either is empty or not understood. */
 int gf_crs_same(const char *wkt_a, const char *wkt_b);
 
+/* The checks of a case's inputs before anything runs (gfCheckInputs): the
+ * CRS of a vector file, a numeric attribute, extents that overlap.  The
+ * readers above check the rest (geometry types, values). */
+
+/* The CRS of the first layer of a vector file (OGR) as WKT in *wkt
+ * (malloc'd, free() it; "" when the layer has none).  Refused (GF_EIO,
+ * GF_EDOM) naming the file: a file OGR cannot open, no layer. */
+gf_status gf_vector_crs(const char *path, char **wkt);
+
+/* Is the attribute (field) `field` of the first layer of a vector file
+ * numeric (integer or real), as gf_polygons_read needs it?  need: what the
+ * number is, for the message ("a number in metres"; NULL: "a number").
+ * Refused naming the file and the field: GF_ENOTFOUND no such field (the
+ * message lists the numeric fields there are), GF_EDOM a field of another
+ * type, named ("field 'thickness' of rel.shp is a text field (String); a
+ * number in metres is needed"); GF_EIO a file OGR cannot open. */
+gf_status gf_vector_field_numeric(const char *path, const char *field, const char *need);
+
+/* The extent of raster r's pixels (their outer edges): box = xmin ymin
+ * xmax ymax. */
+void gf_raster_extent(const gf_raster *r, double box[4]);
+
+/* Do the boxes a and b (xmin ymin xmax ymax each) overlap, edges included?
+ * 1 yes, 0 no (also when a coordinate is NAN). */
+int gf_box_overlap(const double a[4], const double b[4]);
+
 /* The node grid of an area mesh on a DEM (see the top of this file). */
 typedef struct gf_terrain_grid {
     int c0, r0, k;        /* pixel of node (0, 0), coarsening */
@@ -135,7 +161,7 @@ gf_status gf_raster_outline(const char *path, const gf_raster *grid, const doubl
 gf_status gf_line_geojson(const char *path, const char *wkt, size_t n, const double *xyz, const char *name,
                           size_t nprops, const char *const *keys, const double *values);
 
-/* Dams (mass-exchange specification, section 3 "Dams"): a crown line, a
+/* Dams (doc/theory/mass-exchange.md, section 3 "Dams"): a crown line, a
  * polyline of n >= 2 points (x y z interleaved, z the crown's absolute
  * elevation, as AvaFrame's Inputs/DAM lines carry it), and a wall slope
  * beta from the horizontal in (0, 90) degrees.  The dam surface at a point
@@ -172,7 +198,7 @@ void gf_dam_free(gf_dam *d);
 gf_status gf_dam_burn(gf_raster *dem, size_t n, const double *xyz, double slope,
                       size_t *n_raised, double *max_rise);
 
-/* Probability map of an ensemble (hazard-analysis specification, section
+/* Probability map of an ensemble (doc/theory/hazard-analysis.md, section
  * 4): per pixel, the fraction of the n member rasters (paths; any raster
  * GDAL reads, on one grid) whose value exceeds threshold (strictly, e.g.
  * ppr > 1 kPa), 0..1.  A member's NODATA pixel counts as not reached; a

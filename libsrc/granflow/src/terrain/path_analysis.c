@@ -109,7 +109,7 @@ static gf_status outside(const gf_raster *dem, const char *what, size_t k, doubl
         snprintf(along, sizeof along, ", %.1f m along it", s);
     return gf_fail(GF_EDOM, "path %s %zu at (%.2f, %.2f)%s: %s; the path must lie inside the DEM"
                             " (pixel centres x %.2f .. %.2f, y %.2f .. %.2f) and off its NODATA"
-                            " (specification section 1)", what, k, x, y, along,
+                            " (doc/theory/hazard-analysis.md, section 1)", what, k, x, y, along,
                    in_box ? "the DEM is NODATA there" : "outside the DEM", b[0], b[2], b[1], b[3]);
 }
 

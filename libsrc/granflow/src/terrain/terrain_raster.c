@@ -207,6 +207,17 @@ done:
     return st;
 }
 
+void gf_raster_extent(const gf_raster *r, double box[4])
+{
+    box[0] = r->gt[0], box[2] = r->gt[0] + r->nx * r->gt[1];
+    box[3] = r->gt[3], box[1] = r->gt[3] + r->ny * r->gt[5];
+}
+
+int gf_box_overlap(const double a[4], const double b[4])
+{
+    return a[0] <= b[2] && b[0] <= a[2] && a[1] <= b[3] && b[1] <= a[3];
+}
+
 /*------------------------------------------------------------------- CRS --*/
 
 /* a PROJ string without its +towgs84=... term */

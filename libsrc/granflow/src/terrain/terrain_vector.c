@@ -105,6 +105,38 @@ static int add_polygon(OGRGeometryH g, double v, zvec *ring0, zvec *pt0, dvec *x
     return 0;
 }
 
+/* Is field `field` of layer definition defn numeric (integer or real)?  The
+ * refusals of gf_vector_field_numeric, naming path and the field. */
+static gf_status numeric_field(OGRFeatureDefnH defn, const char *path, const char *field,
+                               const char *need)
+{
+    if (!need)
+        need = "a number";
+    const int fi = OGR_FD_GetFieldIndex(defn, field);
+    if (fi < 0) {
+        char fields[512] = "";
+        for (int i = 0; i < OGR_FD_GetFieldCount(defn); ++i) {
+            OGRFieldDefnH d = OGR_FD_GetFieldDefn(defn, i);
+            const OGRFieldType t = OGR_Fld_GetType(d);
+            if (t != OFTReal && t != OFTInteger && t != OFTInteger64)
+                continue;
+            const size_t l = strlen(fields);
+            snprintf(fields + l, sizeof fields - l, "%s%s", l ? ", " : "", OGR_Fld_GetNameRef(d));
+        }
+        return gf_fail(GF_ENOTFOUND, "%s: no '%s' attribute (field); %s is needed there (the"
+                                     " numeric fields of the file: %s)", path, field, need,
+                       fields[0] ? fields : "none");
+    }
+    const OGRFieldType t = OGR_Fld_GetType(OGR_FD_GetFieldDefn(defn, fi));
+    if (t == OFTReal || t == OFTInteger || t == OFTInteger64)
+        return GF_SUCCESS;
+    if (t == OFTString)
+        return gf_fail(GF_EDOM, "field '%s' of %s is a text field (String); %s is needed", field,
+                       path, need);
+    return gf_fail(GF_EDOM, "field '%s' of %s is a %s field, not a number; %s is needed", field,
+                   path, OGR_GetFieldTypeName(t), need);
+}
+
 gf_status gf_polygons_read(const char *path, const char *attribute, double value, gf_polygons *p)
 {
     if (!path || !p)
@@ -128,20 +160,9 @@ gf_status gf_polygons_read(const char *path, const char *attribute, double value
     OGRFeatureDefnH defn = OGR_L_GetLayerDefn(L);
     int fi = -1;
     if (attribute) {
-        fi = OGR_FD_GetFieldIndex(defn, attribute);
-        const OGRFieldType t = fi >= 0 ? OGR_Fld_GetType(OGR_FD_GetFieldDefn(defn, fi)) : OFTString;
-        if (fi < 0 || (t != OFTReal && t != OFTInteger && t != OFTInteger64)) {
-            char fields[256] = "";
-            for (int i = 0; i < OGR_FD_GetFieldCount(defn); ++i) {
-                const size_t l = strlen(fields);
-                snprintf(fields + l, sizeof fields - l, "%s%s", i ? ", " : "",
-                         OGR_Fld_GetNameRef(OGR_FD_GetFieldDefn(defn, i)));
-            }
-            st = gf_fail(GF_ENOTFOUND, "polygons %s: %s attribute '%s'; the numeric attributes"
-                                       " to choose from are among: %s", path,
-                         fi < 0 ? "no" : "non-numeric", attribute, fields[0] ? fields : "(none)");
+        if ((st = numeric_field(defn, path, attribute, NULL)) != GF_SUCCESS)
             goto done;
-        }
+        fi = OGR_FD_GetFieldIndex(defn, attribute);
     }
     OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(L);
     if (srs) {
@@ -158,7 +179,8 @@ gf_status gf_polygons_read(const char *path, const char *attribute, double value
         double v = value;
         if (fi >= 0) {
             if (!OGR_F_IsFieldSetAndNotNull(f, fi)) {
-                st = gf_fail(GF_EDOM, "polygons %s: feature %ld has no %s value", path, fid, attribute);
+                st = gf_fail(GF_EDOM, "polygons %s: feature %ld has no %s value (the field is empty"
+                                      " there); give every polygon its value", path, fid, attribute);
                 OGR_F_Destroy(f);
                 goto done;
             }
@@ -258,7 +280,7 @@ double gf_polygons_area(const gf_polygons *p, size_t k)
 }
 
 /*------------------------------------------------------------------- dams --*/
-/* mass-exchange specification, section 3 "Dams"; see granflow/terrain.h */
+/* doc/theory/mass-exchange.md, section 3 "Dams"; see granflow/terrain.h */
 
 void gf_dam_free(gf_dam *d)
 {
@@ -327,7 +349,7 @@ gf_status gf_dam_read(const char *path, const char *slope_attribute, double slop
     }
     if (!OGR_G_Is3D(g)) {
         st = gf_fail(GF_EDOM, "dam %s: feature %ld is a 2D line without heights; the crown line"
-                              " needs z (the crown's elevation) at each point (specification,"
+                              " needs z (the crown's elevation) at each point (doc/theory/mass-exchange.md,"
                               " section 3)", path, fid);
         goto done;
     }
@@ -486,4 +508,49 @@ gf_status gf_dam_burn(gf_raster *dem, size_t n, const double *xyz, double slope,
     if (max_rise)
         *max_rise = rise;
     return GF_SUCCESS;
+}
+
+/*----------------------------------------------------- checks of inputs --*/
+
+gf_status gf_vector_crs(const char *path, char **wkt)
+{
+    if (!path || !wkt)
+        return gf_fail(GF_EINVAL, "gf_vector_crs: null argument");
+    *wkt = NULL;
+    gf_terrain_gdal_init();
+    gf_status st;
+    GDALDatasetH ds = gf_terrain_open_vector("vector file", path, &st);
+    if (!ds)
+        return st;
+    OGRLayerH L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
+    if (!L)
+        st = gf_fail(GF_EDOM, "vector file %s: no layer", path);
+    else {
+        OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(L);
+        char *w = NULL;
+        if (srs)
+            OSRExportToWkt(srs, &w);
+        *wkt = gf_terrain_dup_str(w);
+        CPLFree(w);
+        if (!*wkt)
+            st = gf_fail(GF_ENOMEM, "vector file %s: out of memory", path);
+    }
+    GDALClose(ds);
+    return st;
+}
+
+gf_status gf_vector_field_numeric(const char *path, const char *field, const char *need)
+{
+    if (!path || !field)
+        return gf_fail(GF_EINVAL, "gf_vector_field_numeric: null argument");
+    gf_terrain_gdal_init();
+    gf_status st;
+    GDALDatasetH ds = gf_terrain_open_vector("vector file", path, &st);
+    if (!ds)
+        return st;
+    OGRLayerH L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
+    st = L ? numeric_field(OGR_L_GetLayerDefn(L), path, field, need)
+           : gf_fail(GF_EDOM, "vector file %s: no layer", path);
+    GDALClose(ds);
+    return st;
 }
