@@ -154,18 +154,20 @@ int main(int argc, char *argv[])
             }
             if (maps.valid())
             {
-                // after the last time and its mass balance are written: the maps of
-                // the latest written time, as gfHazardMaps makes them afterwards
+                // after the last time and its mass balance are written (the last
+                // step is written on the write grid or not: explicitLoop.H,
+                // implicitLoop.H): the maps of the final state, the latest
+                // written time, as gfHazardMaps makes them afterwards
                 peaks.flush();
-                const instantList times = runTime.times();
-                if (times.last().name() != runTime.timeName())
+                const instant last(runTime.value(), runTime.timeName());
+                if (!isDir(runTime.timePath()))
                 {
-                    Info<< "hazardMaps: the run ended at t = " << runTime.timeName() << " s, which is not"
-                        << " written; the maps are those of the latest written time " << times.last().name()
-                        << " s" << nl;
+                    FatalErrorInFunction
+                        << "hazardMaps: the final time " << runTime.timeName() << " s was not written"
+                        << exit(FatalError);
                 }
-                Info<< nl << "Hazard maps of time " << times.last().name() << " s:" << nl;
-                maps->write(times.last());
+                Info<< nl << "Hazard maps of time " << last.name() << " s:" << nl;
+                maps->write(last);
                 Info<< endl;
                 profile.mark("hazard maps");
                 // the path analysis of the maps (controlDict pathAnalysis), the files
