@@ -154,12 +154,12 @@ static size_t check_polygons(const dem_info *dem, const char *path, const char *
                              const char *what, const char *hint)
 {
     if (attribute && gf_vector_field_numeric(path, attribute, "a number in metres") != GF_SUCCESS) {
-        refuse("%s (%s)", gf_error_detail(), hint);
+        refuse("%s; %s", gf_error_detail(), hint);
         return 0;
     }
     gf_polygons p;
     if (gf_polygons_read(path, attribute, 1.0, &p) != GF_SUCCESS) {
-        refuse("%s (%s)", gf_error_detail(), hint);
+        refuse("%s; %s", gf_error_detail(), hint);
         return 0;
     }
     const size_t n = p.n;
@@ -244,22 +244,22 @@ int main(int argc, char **argv)
     if (rel && check_crs(&dem, rel, "release"))
         n_rel = check_polygons(&dem, rel, attr, "release",
                                "the release areas are polygons with their thickness [m] in an"
-                               " attribute; doc/guide/own-case.md");
+                               " attribute (doc/guide/own-case.md)");
     if (ent && check_crs(&dem, ent, "entrainment areas"))
         check_polygons(&dem, ent, attr, "entrainment",
                        "the entrainment areas are polygons with the thickness [m] of the"
-                       " entrainable layer in an attribute; doc/guide/terrain-case.md");
+                       " entrainable layer in an attribute (doc/guide/terrain-case.md)");
     if (res && check_crs(&dem, res, "resistance areas"))
         check_polygons(&dem, res, NULL, "resistance",
-                       "the resistance areas (forests) are polygons; doc/guide/terrain-case.md");
+                       "the resistance areas (forests) are polygons (doc/guide/terrain-case.md)");
 
     /* the dam, burnt into the DEM as gfTerrainMesh burns it (the path
      * analysis of such a run reads that DEM) */
     if (dam && check_crs(&dem, dam, "dam")) {
         gf_dam d;
         if (gf_dam_read(dam, "slope", NAN, &d) != GF_SUCCESS)
-            refuse("%s (the dam is its crown as one 3D line with the wall slope in the attribute"
-                   " 'slope'; doc/guide/terrain-case.md)", gf_error_detail());
+            refuse("%s; the dam is its crown as one 3D line with the wall slope in the attribute"
+                   " 'slope' (doc/guide/terrain-case.md)", gf_error_detail());
         else {
             if (gf_dam_burn(&dem.r, d.n, d.xyz, d.slope, NULL, NULL) != GF_SUCCESS)
                 refuse("%s: %s: draw the dam on this terrain (a line of another terrain, or in"
@@ -275,8 +275,7 @@ int main(int argc, char **argv)
     int have_grid = 0;
     if (path && check_crs(&dem, path, "path")) {
         if (gf_path_read(path, &np, &xy) != GF_SUCCESS)
-            refuse("%s (the path is one line drawn from the release down through the runout;"
-                   " doc/guide/path-analysis.md)", gf_error_detail());
+            refuse("%s; see doc/guide/path-analysis.md", gf_error_detail());
         else if (gf_path_grid_make(&dem.r, np, xy, path_default("-width"), &g) != GF_SUCCESS)
             refuse("%s: %s: the path analysis needs the path on this DEM (a path of another"
                    " terrain?); draw it on this DEM, or remove it to run without the path analysis"
@@ -290,8 +289,8 @@ int main(int argc, char **argv)
             refuse("%s: a split point needs the avalanche path (Inputs/LINES/path_aimec.shp);"
                    " add the path or remove the split point", split);
         else if (gf_point_read(split, &x, &y) != GF_SUCCESS)
-            refuse("%s (the split point is one point on the path, below the release;"
-                   " doc/guide/path-analysis.md)", gf_error_detail());
+            refuse("%s; the split point is one point on the path, below the release"
+                   " (doc/guide/path-analysis.md)", gf_error_detail());
         else if (!gf_raster_covers(&dem.r, x, y))
             refuse("%s: the split point (%.1f, %.1f) lies outside the DEM %s (x %.1f .. %.1f,"
                    " y %.1f .. %.1f): place it on this terrain's path, or remove it",

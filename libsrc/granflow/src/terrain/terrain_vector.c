@@ -123,8 +123,8 @@ static gf_status numeric_field(OGRFeatureDefnH defn, const char *path, const cha
             const size_t l = strlen(fields);
             snprintf(fields + l, sizeof fields - l, "%s%s", l ? ", " : "", OGR_Fld_GetNameRef(d));
         }
-        return gf_fail(GF_ENOTFOUND, "%s: no '%s' attribute (field); %s is needed there (the"
-                                     " numeric fields of the file: %s)", path, field, need,
+        return gf_fail(GF_ENOTFOUND, "%s: no '%s' attribute; %s is needed there (the numeric"
+                                     " attributes of the file: %s)", path, field, need,
                        fields[0] ? fields : "none");
     }
     const OGRFieldType t = OGR_Fld_GetType(OGR_FD_GetFieldDefn(defn, fi));
