@@ -29,7 +29,7 @@ static void usage(FILE *f)
     const gf_path_analysis_option *o = gf_path_analysis_options(&n);
     fprintf(f, "usage: gfPathAnalysis -dem DEM -path LINE -ppr F [-pft F] [-pfv F] -out DIR [options]\n"
                "       gfPathAnalysis -help | -keywords | -version\n\n"
-               "The path analysis of peak rasters (hazard-analysis specification sections 1-3,\n"
+               "The path analysis of peak rasters (doc/theory/hazard-analysis.md, sections 1-3,\n"
                "AvaFrame's ana3AIMEC): the rasters on the path-following (s, l) grid, the\n"
                "cross-section maximum and mean along the path, the runout (sRunout, runoutAngle)\n"
                "of -field above -threshold, MMA/AMA (maxpprCrossMax, meanpprCrossMax, ...) and,\n"

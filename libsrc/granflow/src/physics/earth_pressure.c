@@ -20,7 +20,7 @@ gf_status gf_earth_pressure_coefficients(double phi, double delta,
         return gf_fail(GF_EPHYS,
                        "bed friction angle delta = %g deg exceeds internal friction angle "
                        "phi = %g deg: 1 - cos^2(phi)/cos^2(delta) < 0, so K_act and K_pass "
-                       "are complex (rkdg paper, section 2); require delta <= phi",
+                       "are complex (doc/theory/savage-hutter.md, section 3); require delta <= phi",
                        delta * GF_RAD2DEG, phi * GF_RAD2DEG);
     const double cphi = cos(phi), cdel = cos(delta);
     double arg = 1.0 - (cphi * cphi) / (cdel * cdel);

@@ -58,28 +58,33 @@ gf_status gf_mass_exchange_config_check(const gf_mass_exchange_config *c)
                            sw[i].v);
     const double big = 1e300;
     gf_status st;
-    if ((st = gf_check_range("mass exchange: entrainable snow density rho_ent [kg/m^3] (spec section 1)",
+#define GF_MX1 " (doc/theory/mass-exchange.md, section 1)"
+#define GF_MX2 " (doc/theory/mass-exchange.md, section 2)"
+    if ((st = gf_check_range("mass exchange: entrainable snow density rho_ent [kg/m^3]" GF_MX1,
                              c->rho_ent, 1e-300, big)) ||
-        (st = gf_check_range("mass exchange: default entrainable thickness h_ent [m] (spec section 1)", c->h_ent,
+        (st = gf_check_range("mass exchange: default entrainable thickness h_ent [m]" GF_MX1, c->h_ent,
                              0.0, big)) ||
-        (st = gf_check_range("mass exchange: specific erosion energy e_b [J/kg] (spec section 1; 0: ploughing)",
+        (st = gf_check_range("mass exchange: specific erosion energy e_b [J/kg] (doc/theory/mass-exchange.md,"
+                             " section 1; 0: ploughing)",
                              c->e_b, 0.0, big)) ||
-        (st = gf_check_range("mass exchange: breaking energy e_s [J/m^2] (spec section 1)", c->e_s, 0.0, big)) ||
-        (st = gf_check_range("mass exchange: deformation energy e_d [J/kg] (spec section 1)", c->e_d, 0.0, big)) ||
-        (st = gf_check_range("mass exchange: detrainment coefficient K [Pa] (spec section 2)", c->K, 0.0, big)) ||
-        (st = gf_check_range("mass exchange: increased-friction coefficient c_res [-] (spec section 2)", c->c_res,
+        (st = gf_check_range("mass exchange: breaking energy e_s [J/m^2]" GF_MX1, c->e_s, 0.0, big)) ||
+        (st = gf_check_range("mass exchange: deformation energy e_d [J/kg]" GF_MX1, c->e_d, 0.0, big)) ||
+        (st = gf_check_range("mass exchange: detrainment coefficient K [Pa]" GF_MX2, c->K, 0.0, big)) ||
+        (st = gf_check_range("mass exchange: increased-friction coefficient c_res [-]" GF_MX2, c->c_res,
                              0.0, big)) ||
-        (st = gf_check_range("mass exchange: resistance window v_min [m/s] (spec section 2)", c->v_min, 0.0, big)) ||
-        (st = gf_check_range("mass exchange: resistance window v_max [m/s] (spec section 2)", c->v_max, 0.0, big)) ||
-        (st = gf_check_range("mass exchange: resistance window h_min [m] (spec section 2)", c->h_min, 0.0, big)) ||
-        (st = gf_check_range("mass exchange: resistance window h_max [m] (spec section 2)", c->h_max, 0.0, big)))
+        (st = gf_check_range("mass exchange: resistance window v_min [m/s]" GF_MX2, c->v_min, 0.0, big)) ||
+        (st = gf_check_range("mass exchange: resistance window v_max [m/s]" GF_MX2, c->v_max, 0.0, big)) ||
+        (st = gf_check_range("mass exchange: resistance window h_min [m]" GF_MX2, c->h_min, 0.0, big)) ||
+        (st = gf_check_range("mass exchange: resistance window h_max [m]" GF_MX2, c->h_max, 0.0, big)))
+#undef GF_MX1
+#undef GF_MX2
         return st;
     if (c->v_min > c->v_max)
-        return gf_fail(GF_EDOM, "mass exchange: speed window inverted: v_min = %g m/s > v_max = %g m/s (spec "
-                                "section 2 needs v_min <= v_max)", c->v_min, c->v_max);
+        return gf_fail(GF_EDOM, "mass exchange: speed window inverted: v_min = %g m/s > v_max = %g m/s (doc/theory/"
+                                "mass-exchange.md, section 2, needs v_min <= v_max)", c->v_min, c->v_max);
     if (c->h_min > c->h_max)
-        return gf_fail(GF_EDOM, "mass exchange: thickness window inverted: h_min = %g m > h_max = %g m (spec "
-                                "section 2 needs h_min <= h_max)", c->h_min, c->h_max);
+        return gf_fail(GF_EDOM, "mass exchange: thickness window inverted: h_min = %g m > h_max = %g m (doc/theory/"
+                                "mass-exchange.md, section 2, needs h_min <= h_max)", c->h_min, c->h_max);
     return GF_SUCCESS;
 }
 

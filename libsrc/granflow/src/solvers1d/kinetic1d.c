@@ -70,7 +70,7 @@ static gf_status kinetic_init(gf_sh1d *s)
 {
     if (s->cfg.topo)
         return gf_fail(GF_EINVAL, "the kinetic schemes are formulated for a constant inclination "
-                                  "(kinetic paper, section 3); use rkdg for a curved chute");
+                                  "(doc/theory/one-d-schemes.md, kinetic schemes); use rkdg for a curved chute");
     if (s->cfg.moving_mesh)
         return gf_fail(GF_EINVAL, "moving_mesh = 1 is an RKDG option; the kinetic schemes run on the fixed grid");
     kinetic *k = calloc(1, sizeof *k);
