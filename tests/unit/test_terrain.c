@@ -9,6 +9,7 @@
 
 #include <gdal.h>
 #include <ogr_api.h>
+#include <ogr_srs_api.h>
 #include <cpl_conv.h>
 
 #include <stdio.h>
@@ -591,6 +592,20 @@ static void input_checks_name_the_crs_the_field_type_and_the_overlap(void **stat
     write_text(shp, "id,thickness,WKT\n1,1.5,\"POLYGON ((0 0,1 0,1 1,0 0))\"\n");
     assert_int_equal(gf_vector_crs(shp, &wkt), GF_SUCCESS);
     assert_string_equal(wkt, "");
+    free(wkt);
+    /* the ESRI .prj of avaKot's release against EPSG's definition of the
+     * same projection (MGI / Austria Lambert, EPSG:31287), which carries
+     * another datum shift (TOWGS84): the same CRS; against UTM 32N: not */
+    assert_int_equal(gf_vector_crs(GF_SOURCE_DIR "/tutorials/avaKot/Inputs/REL/relKot.shp", &wkt), GF_SUCCESS);
+    for (int epsg = 31287; epsg; epsg = epsg == 31287 ? 32632 : 0) {
+        OGRSpatialReferenceH e = OSRNewSpatialReference(NULL);
+        assert_int_equal(OSRImportFromEPSG(e, epsg), OGRERR_NONE);
+        char *ew = NULL;
+        OSRExportToWkt(e, &ew);
+        assert_int_equal(gf_crs_same(wkt, ew), epsg == 31287 ? 1 : 0);
+        CPLFree(ew);
+        OSRDestroySpatialReference(e);
+    }
     free(wkt);
     assert_int_equal(gf_vector_crs(tmp("missing.shp"), &wkt), GF_EIO);
     assert_true(strstr(gf_error_detail(), "missing.shp") != NULL);
