@@ -47,7 +47,7 @@
 extern "C" {
 #endif
 
-/** The path-following grid (specification section 1). Grid arrays are
+/** The path-following grid (section 1). Grid arrays are
  *  [ns nl], index i nl + j (i along the path, j across). */
 typedef struct gf_path_grid {
     size_t ns, nl;        /**< points along the path, across it */

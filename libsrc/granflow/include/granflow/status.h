@@ -33,7 +33,8 @@ const char *gf_strerror(gf_status status);
 
 /* Detail of the last failure in this thread, e.g.
  * "bed friction angle delta = 35 deg exceeds internal friction angle
- *  phi = 30 deg: K_act/K_pass are complex (rkdg paper, section 2)".
+ *  phi = 30 deg: ... K_act and K_pass are complex
+ *  (doc/theory/savage-hutter.md, section 3); require delta <= phi".
  * Empty string when no failure has been recorded. */
 const char *gf_error_detail(void);
 
