@@ -15,7 +15,9 @@
 
 The checks refuse with the command-line tools' words (gfRunCase,
 gfSetRelease): a DEM without a CRS, layers in another CRS than the DEM, a
-release polygon outside the DEM, a thickness that is missing or not > 0.
+release polygon outside the DEM, a thickness that is missing or not > 0, a
+thickness (or ci95) field that is not numeric (a text field); and an output
+folder that holds inputs or a case the plugin did not write.
 """
 import os
 import re
@@ -23,15 +25,16 @@ import shutil
 import subprocess
 
 from qgis.core import (QgsCoordinateReferenceSystem, QgsFeature, QgsField, QgsFields,
-                       QgsProcessingException, QgsRasterLayer, QgsRectangle,
-                       QgsVectorFileWriter, QgsWkbTypes)
+                       QgsProcessingException, QgsRasterLayer, QgsVectorFileWriter)
 from qgis.PyQt.QtCore import QVariant
 
 MARKER = '.written-by-granflow-qgis'
 
 
-class InputError(QgsProcessingException):
-    """Bad input, refused before anything runs."""
+class InputError(Exception):
+    """Bad input, refused before anything runs: checkParameterValues
+    returns its message, processAlgorithm raises it as a
+    QgsProcessingException (GranflowAlgorithm.processAlgorithm)."""
 
 
 def crs_text(crs):
@@ -78,18 +81,31 @@ def check_vector(name, source, dem):
                                                                   crs_text(dem.crs())))
 
 
+def check_numeric_field(source, field, what, quantity='thickness'):
+    """A field that must hold numbers: present, and of a numeric type (a
+    text field is refused, even when its texts read as numbers)."""
+    i = source.fields().indexOf(field)
+    if i < 0:
+        raise InputError('{}: no field \'{}\''.format(what, field))
+    f = source.fields().at(i)
+    if not f.isNumeric():
+        kind = 'text' if f.type() == QVariant.String else (f.typeName() or 'non-numeric')
+        raise InputError('{}: field \'{}\' is a {} field; a numeric {} field in metres is needed'
+                         .format(what, field, kind, quantity))
+
+
 def thickness_source(source, field, value, what):
     """How a polygon layer's thickness is given: (field, None) or (None,
     value); the field named 'thickness' (AvaFrame's) when neither is."""
     if field:
-        if source.fields().indexOf(field) < 0:
-            raise InputError('{}: no field \'{}\''.format(what, field))
+        check_numeric_field(source, field, what)
         return field, None
     if value is not None:
         if not value > 0:
             raise InputError('{}: thickness {} m; a thickness must be > 0 m'.format(what, value))
         return None, value
     if source.fields().indexOf('thickness') >= 0:
+        check_numeric_field(source, 'thickness', what)
         return 'thickness', None
     raise InputError('{}: no \'thickness\' attribute (the thickness [m] of each polygon, AvaFrame\'s): '
                      'choose a thickness field or give a thickness'.format(what))
@@ -131,16 +147,30 @@ def check_polygons(source, field, value, dem, what):
         raise InputError('{}: no polygons'.format(what))
 
 
+def check_folder(folder):
+    """The output folder: new, empty, or a previous output of the plugin
+    (Inputs/ with the plugin's marker: its Inputs/ is replaced, run/ and
+    ensemble/ rewritten).  Refused: a file, a folder with an Inputs/ the
+    plugin did not write (a case's own inputs are never overwritten), an
+    OpenFOAM case."""
+    what = 'OUTPUT {}'.format(folder)
+    if os.path.exists(folder) and not os.path.isdir(folder):
+        raise InputError('{}: a file, not a folder; choose a new or empty folder'.format(what))
+    inputs = os.path.join(folder, 'Inputs')
+    if os.path.lexists(inputs) and not os.path.exists(os.path.join(inputs, MARKER)):
+        raise InputError('{}: holds an Inputs/ folder the granflow plugin did not write (its inputs are not '
+                         'overwritten); choose a new or empty folder, or a previous output of the plugin, or run '
+                         'gfRunCase on that folder in a shell'.format(what))
+    if os.path.exists(os.path.join(folder, 'system', 'controlDict')):
+        raise InputError('{}: holds an OpenFOAM case (system/controlDict); choose a new or empty folder'
+                         .format(what))
+
+
 def prepare_folder(folder):
     """The case folder: made, or a previous output of the plugin (its
     Inputs/ replaced); refused when it holds other inputs or a case."""
+    check_folder(folder)
     inputs = os.path.join(folder, 'Inputs')
-    if os.path.isdir(inputs) and not os.path.exists(os.path.join(inputs, MARKER)):
-        raise InputError('{}: has an Inputs/ folder the granflow plugin did not write; choose an empty '
-                         'folder (or run gfRunCase on it)'.format(folder))
-    if os.path.exists(os.path.join(folder, 'system', 'controlDict')):
-        raise InputError('{}: holds an OpenFOAM case (system/controlDict); choose an empty folder'
-                         .format(folder))
     if os.path.isdir(inputs):
         shutil.rmtree(inputs)
     os.makedirs(inputs)
@@ -247,6 +277,8 @@ class CaseInputs:
         what = 'release layer {}'.format(self.release.sourceName())
         self.rel_field, self.rel_value = thickness_source(self.release, self.rel_field, self.rel_value, what)
         check_polygons(self.release, self.rel_field, self.rel_value, self.dem, what)
+        if self.ci95_field:
+            check_numeric_field(self.release, self.ci95_field, what, 'ci95')
         if self.ent is not None:
             what = 'entrainment layer {}'.format(self.ent.sourceName())
             check_vector(what, self.ent, self.dem)

@@ -5,7 +5,7 @@ command line's options; optionally against a reference run."""
 import os
 
 from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputFile,
-                       QgsProcessingParameterBoolean, QgsProcessingParameterEnum,
+                       QgsProcessingParameterBoolean,
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterFolderDestination,
                        QgsProcessingParameterNumber, QgsProcessingParameterRasterLayer,
                        QgsProcessingParameterString, QgsProcessingUtils)
@@ -62,10 +62,7 @@ class PathAnalysis(GranflowAlgorithm):
             [QgsProcessing.TypeVectorPoint], optional=True))
         for key, _, text in self.RASTERS:
             self.addParameter(QgsProcessingParameterRasterLayer(key, text, optional=True))
-        field = QgsProcessingParameterEnum('FIELD', 'Result type of the runout and the comparison',
-                                           ['ppr', 'pft', 'pfv'], False, 'ppr', False)
-        field.setUsesStaticStrings(True)
-        self.addParameter(field)
+        self.add_enum('FIELD', 'Result type of the runout and the comparison', ['ppr', 'pft', 'pfv'], 'ppr')
         self.addParameter(QgsProcessingParameterNumber(
             'THRESHOLD', 'Threshold: reached where the field exceeds it (default 1 kPa, 0.1 m, 1 m/s)',
             QgsProcessingParameterNumber.Double, None, True, 0.0))
@@ -93,7 +90,7 @@ class PathAnalysis(GranflowAlgorithm):
         split = self.parameterAsSource(parameters, 'SPLIT_POINT', context)
         if split is not None:
             check_vector('split point layer {}'.format(split.sourceName()), split, dem)
-        field = self.parameterAsEnumString(parameters, 'FIELD', context)
+        field = self.enum_string(parameters, 'FIELD')
         if self.parameterAsRasterLayer(parameters, field.upper(), context) is None:
             raise InputError('-field {}: its raster is required (-{})'.format(field, field))
         for key, opt, text in self.RASTERS:
@@ -104,7 +101,7 @@ class PathAnalysis(GranflowAlgorithm):
                     raise InputError('{} {}: in another CRS ({}) than the DEM {} ({})'
                                      .format(text, r.name(), crs_text(r.crs()), dem.name(), crs_text(dem.crs())))
 
-    def processAlgorithm(self, parameters, context, feedback):
+    def process(self, parameters, context, feedback):
         self.check(parameters, context)
         dem = self.parameterAsRasterLayer(parameters, 'DEM', context)
         out = os.path.abspath(self.parameterAsString(parameters, 'OUTPUT', context))
@@ -121,7 +118,7 @@ class PathAnalysis(GranflowAlgorithm):
             r = self.parameterAsRasterLayer(parameters, key, context)
             if r is not None:
                 args += [opt, raster_file(r, text)]
-        args += ['-field', self.parameterAsEnumString(parameters, 'FIELD', context)]
+        args += ['-field', self.enum_string(parameters, 'FIELD')]
         if self.has_value(parameters, 'THRESHOLD'):
             args += ['-threshold', num(self.parameterAsDouble(parameters, 'THRESHOLD', context))]
         args += ['-width', num(self.parameterAsDouble(parameters, 'WIDTH', context)),

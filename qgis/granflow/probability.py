@@ -8,14 +8,14 @@ import re
 import shlex
 
 from qgis.core import (QgsProcessingException, QgsProcessingOutputFile, QgsProcessingOutputFolder,
-                       QgsProcessingOutputRasterLayer, QgsProcessingOutputVectorLayer,
-                       QgsProcessingParameterBoolean, QgsProcessingParameterEnum, QgsProcessingParameterField,
+                       QgsProcessingOutputNumber, QgsProcessingOutputRasterLayer, QgsProcessingOutputString,
+                       QgsProcessingOutputVectorLayer, QgsProcessingParameterBoolean, QgsProcessingParameterField,
                        QgsProcessingParameterFolderDestination, QgsProcessingParameterNumber,
                        QgsProcessingParameterString)
 
 from . import styles
-from .base import GranflowAlgorithm, num, remove_outputs
-from .inputs import InputError
+from .base import GranflowAlgorithm, end_condition, num, remove_outputs, report_end
+from .inputs import InputError, check_numeric_field
 from .runner import Cancelled, failure, run_tool
 
 _HELP = '''<p>The probability that a point is reached (peak pressure above a threshold) over an
@@ -74,10 +74,7 @@ class ProbabilityMap(GranflowAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             'CI95', 'Release thickness: half-width of its 95 % interval for every polygon [m]',
             QgsProcessingParameterNumber.Double, None, True, 0.0))
-        method = QgsProcessingParameterEnum('METHOD', 'Sampling', ['latinHypercube', 'oneAtATime'], False,
-                                            'latinHypercube', False)
-        method.setUsesStaticStrings(True)
-        self.addParameter(method)
+        self.add_enum('METHOD', 'Sampling', ['latinHypercube', 'oneAtATime'], 'latinHypercube')
         self.addParameter(QgsProcessingParameterNumber('MEMBERS', 'Members (latinHypercube)',
                                                        QgsProcessingParameterNumber.Integer, 40, False, 1))
         self.advanced(QgsProcessingParameterNumber('STEPS', 'Steps of each input (oneAtATime)',
@@ -103,6 +100,11 @@ class ProbabilityMap(GranflowAlgorithm):
         self.addOutput(QgsProcessingOutputFile('RESULTS', 'Members\' results (CSV)'))
         self.addOutput(QgsProcessingOutputFile('SUMMARY', 'Summary of the ensemble'))
         self.addOutput(QgsProcessingOutputFolder('ENSEMBLE_FOLDER', 'Ensemble folder'))
+        self.addOutput(QgsProcessingOutputNumber(
+            'MEMBERS_CAP', 'Members that ended at the endTime cap (the flow had not stopped; status cap)'))
+        self.addOutput(QgsProcessingOutputString(
+            'END_CONDITION', 'The reference run\'s end: stopped, cap (the endTime cap: the flow had not stopped) '
+            'or endTime'))
 
     def levels(self, parameters, context):
         text = self.parameterAsString(parameters, 'LEVELS', context)
@@ -127,17 +129,21 @@ class ProbabilityMap(GranflowAlgorithm):
                     or inputs.release.fields().indexOf('ci95') >= 0):
                 raise InputError('release thickness varied: its ci95 is needed (a field, a value, or the '
                                  'release layer\'s field \'ci95\')')
+            if not inputs.ci95_field and inputs.ci95_value is None:
+                check_numeric_field(inputs.release, 'ci95', 'release layer {}'.format(inputs.release.sourceName()),
+                                    'ci95')
 
-    def processAlgorithm(self, parameters, context, feedback):
+    def process(self, parameters, context, feedback):
         self.check(parameters, context)
         folder = os.path.abspath(self.parameterAsString(parameters, 'OUTPUT', context))
         made = not os.path.exists(folder)
-        folder, run, lines = self.run_case(parameters, context, feedback, 0.0, 25.0)
+        folder, run, lines, _ = self.run_case(parameters, context, feedback, 0.0, 25.0)
+        reference_end = end_condition(run)
         release = self.parameterAsBoolean(parameters, 'VARY_RELEASE', context)
         mu = self.parameterAsDouble(parameters, 'MU_PERCENT', context)
         # samosATAuto: the set the reference run chose is the ensemble's reference
         props = os.path.join(run, 'constant', 'granularProperties')
-        if self.parameterAsEnumString(parameters, 'FRICTION', context) == 'samosATAuto':
+        if self.enum_string(parameters, 'FRICTION') == 'samosATAuto':
             m = next((SAMOS.match(l) for l in lines if SAMOS.match(l)), None)
             if m is None:
                 raise QgsProcessingException('samosATAuto: the reference run\'s choice is not in its log')
@@ -162,7 +168,7 @@ class ProbabilityMap(GranflowAlgorithm):
             with open(rel, 'w') as f:
                 f.write(text)
         members = self.parameterAsInt(parameters, 'MEMBERS', context)
-        method = self.parameterAsEnumString(parameters, 'METHOD', context)
+        method = self.enum_string(parameters, 'METHOD')
         with open(os.path.join(run, 'system', 'ensembleDict'), 'w') as f:
             f.write(ensemble_dict(method, members, self.parameterAsInt(parameters, 'STEPS', context),
                                   self.parameterAsInt(parameters, 'SEED', context), mu, release,
@@ -203,5 +209,24 @@ class ProbabilityMap(GranflowAlgorithm):
         if os.path.isfile(out['CONTOURS']):
             styles.load(context, out['CONTOURS'], 'probability contours', 'CONTOURS', styles.OutlineStyle('#08306b'))
         styles.load(context, out['RESULTS'], 'ensemble members', 'RESULTS')
+        # the closing summary: the reference run's end, the members by
+        # status; members at the endTime cap flagged (results.csv's status cap)
+        out['END_CONDITION'] = reference_end['status']
+        summary = []
+        if os.path.isfile(out['SUMMARY']):
+            with open(out['SUMMARY'], errors='replace') as f:
+                summary = f.read().splitlines()
+        counts = next((l for l in summary if l.startswith('members ok ')), '')
+        m = re.search(r'ended at the endTime cap (\d+)', counts)
+        out['MEMBERS_CAP'] = int(m.group(1)) if m else 0
+        if reference_end['line']:
+            feedback.pushInfo('reference run: ' + reference_end['line'])
+        if counts:
+            feedback.pushInfo(counts)
+        if out['MEMBERS_CAP']:
+            feedback.reportError('\n'.join(l for l in summary if l.startswith('WARNING: ') or l.startswith('  CAP: ')
+                                           or l.startswith('  their maps')), False)
+        if reference_end['status'] == 'cap':
+            report_end(reference_end, feedback, 'the reference run')
         feedback.setProgress(100)
         return out

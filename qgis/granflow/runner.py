@@ -113,12 +113,14 @@ def stop_group(proc, grace=30.0):
 
 
 
-def run_tool(args, feedback, progress=None, cwd=None, env=None):
+def run_tool(args, feedback, progress=None, cwd=None, env=None, idle=None):
     """Runs a granflow tool (args: the command and its options) in the
     environment of etc/bashrc, in its own process group; every output line
-    goes to the log and to progress(line) (a percentage or None).  Returns
-    (exit status, output lines); raises Cancelled after stopping the group
-    when the user cancels."""
+    goes to the log and to progress(line) (a percentage or None), and while
+    no line comes idle() (a percentage or None) is asked every 0.2 s (the
+    progress of a step that prints nothing).  Returns (exit status, output
+    lines); raises Cancelled after stopping the group when the user
+    cancels."""
     gdir = granflow_dir()
     feedback.pushCommandInfo(command_line(args))
     full_env = dict(os.environ)
@@ -146,6 +148,9 @@ def run_tool(args, feedback, progress=None, cwd=None, env=None):
             try:
                 line = lines.get(timeout=0.2)
             except queue.Empty:
+                p = idle() if idle else None
+                if p is not None:
+                    feedback.setProgress(max(0.0, min(100.0, p)))
                 continue
             if line is None:
                 break

@@ -5,11 +5,11 @@ the affected area and the path analysis loaded as layers."""
 import os
 
 from qgis.core import (QgsProcessingException, QgsProcessingOutputFile, QgsProcessingOutputFolder,
-                       QgsProcessingOutputRasterLayer, QgsProcessingOutputVectorLayer,
-                       QgsProcessingParameterFolderDestination)
+                       QgsProcessingOutputNumber, QgsProcessingOutputRasterLayer, QgsProcessingOutputString,
+                       QgsProcessingOutputVectorLayer, QgsProcessingParameterFolderDestination)
 
 from . import styles
-from .base import GranflowAlgorithm
+from .base import REPORT_MAPS, GranflowAlgorithm, end_condition, report_end
 
 _HELP = '''<p>Runs an avalanche from a DEM and release polygons to the hazard maps with granflow's
 <code>gfRunCase</code>, exactly as the command line does: the layers are written into the output folder
@@ -52,9 +52,17 @@ class Simulation(GranflowAlgorithm):
         self.addOutput(QgsProcessingOutputFile('PATH_ANALYSIS', 'Path analysis table (CSV)'))
         self.addOutput(QgsProcessingOutputFile('SUMMARY', 'Summary of the run'))
         self.addOutput(QgsProcessingOutputFolder('RUN_FOLDER', 'OpenFOAM case (logs, fields for ParaView)'))
+        self.addOutput(QgsProcessingOutputString(
+            'END_CONDITION', 'How the run ended: stopped (the stop criterion), cap (the endTime cap: the flow had '
+            'not stopped) or endTime'))
+        self.addOutput(QgsProcessingOutputNumber(
+            'MOVING_PERCENT', 'Volume still moving at the end (faster than 1 m/s) [% of the volume]'))
+        self.addOutput(QgsProcessingOutputFolder('REPORT_FOLDER', 'Report maps (PDF and PNG)'))
+        for key, _, text in REPORT_MAPS:
+            self.addOutput(QgsProcessingOutputFile(key, text))
 
-    def processAlgorithm(self, parameters, context, feedback):
-        folder, run, lines = self.run_case(parameters, context, feedback)
+    def process(self, parameters, context, feedback):
+        folder, run, lines, rc = self.run_case(parameters, context, feedback)
         maps = os.path.join(run, 'postProcessing', 'hazardMaps')
         out = {'OUTPUT': folder, 'RUN_FOLDER': run,
                'HPEAK': os.path.join(maps, 'hPeak.tif'),
@@ -78,9 +86,38 @@ class Simulation(GranflowAlgorithm):
         if os.path.isfile(csv):
             out['PATH_ANALYSIS'] = csv
             styles.load(context, csv, 'path analysis', 'PATH_ANALYSIS')
+        # the report maps: framed pictures (PDF, PNG), not georeferenced
+        # layers: outputs, not loaded
+        report = os.path.join(maps, 'report')
+        drawn = []
+        if self.report_maps(parameters, context):
+            for key, name, _ in REPORT_MAPS:
+                pdf = os.path.join(report, name + '.pdf')
+                if os.path.isfile(pdf):
+                    out[key] = pdf
+                    drawn.append(name)
+            if drawn:
+                out['REPORT_FOLDER'] = report
+            missing = [n for _, n, _ in REPORT_MAPS if n not in drawn]
+            if missing:
+                feedback.reportError('report maps not drawn: {} (log {}); gfReportMaps {} draws them again'
+                                     .format(', '.join(missing), os.path.join(run, 'log.gfReportMaps'), run), False)
+        end = end_condition(run)
+        out['END_CONDITION'] = end['status']
+        if end['moving_percent'] is not None:
+            out['MOVING_PERCENT'] = end['moving_percent']
+        # the closing summary: the headline numbers, how the run ended, where
+        # the report maps are; a run that the endTime cap ended is flagged
         for line in lines:
             if line.startswith('max peak') or line.startswith('affected area') or 'runout along the path' in line \
-                    or line.startswith('samosATAuto: release volume') or line.startswith('End condition'):
+                    or line.startswith('samosATAuto: release volume'):
                 feedback.pushInfo(line.strip())
+        if end['line']:
+            feedback.pushInfo(end['line'])
+        if drawn:
+            feedback.pushInfo('report maps: {}/{{{}}}.{{pdf,png}}'.format(report, ','.join(drawn)))
+        elif not self.report_maps(parameters, context):
+            feedback.pushInfo('report maps: not drawn (REPORT_MAPS off; gfReportMaps {} draws them)'.format(run))
+        report_end(end, feedback)
         feedback.setProgress(100)
         return out
