@@ -30,7 +30,10 @@ release volume.</p>
 <p>The inputs and their checks are the avalanche simulation's. Writes <code>run/</code> (the
 reference) and <code>ensemble/</code> (members.txt, results.csv, summary.txt,
 probability/probability.tif, contours.geojson) into the output folder and loads the probability
-raster and its contours. Cancel stops every member and removes both folders.</p>'''
+raster and its contours. results.csv names each column with its unit (the release's factor z
+releaseThickness_ci95Factor and its thickness releaseThickness_m, tEnd_s, affectedArea_m2, ...); a
+member that the end time's cap ended (the flow had not stopped) has status <code>cap</code>, and the
+log's closing summary warns (MEMBERS_CAP). Cancel stops every member and removes both folders.</p>'''
 
 SAMOS = re.compile(r'^samosATAuto: release volume \S+ m3 -> (\w+) \(mu (\S+), tau0 (\S+) Pa, Rs0 (\S+), '
                    r'kappa (\S+), R (\S+) m, B (\S+), u0 (\S+) m/s\)')

@@ -18,17 +18,25 @@ in AvaFrame's input layout (<code>Inputs/</code>: the DEM, <code>REL/release.shp
 <code>LINES/path_aimec.shp</code>, <code>POINTS/splitPoint.shp</code>), and
 <code>gfRunCase</code> meshes the terrain, sets the release, runs the solver and writes the hazard maps
 and the path analysis into <code>run/postProcessing/</code>.</p>
-<p><b>Release thickness</b>: a numeric field, or one value for every polygon; without either, the
-field <code>thickness</code> (AvaFrame's). Every thickness must be &gt; 0 m.</p>
-<p><b>Friction</b>: samosATAuto chooses AvaFrame's samosAT set by the release volume (small below
-25,000 m&sup3;, medium below 60,000 m&sup3;); samosAT (&mu; 0.155), samosATMedium (0.17), samosATSmall
-(0.22).</p>
+<p><b>Release thickness</b>: a numeric field in metres (a text field is refused), or one value for
+every polygon; without either, the field <code>thickness</code> (AvaFrame's). Every thickness must be
+&gt; 0 m.</p>
+<p><b>Friction</b> (FRICTION: the name, or its number 0 to 3): samosATAuto chooses AvaFrame's samosAT
+set by the release volume (small below 25,000 m&sup3;, medium below 60,000 m&sup3;); samosAT (&mu;
+0.155), samosATMedium (0.17), samosATSmall (0.22).</p>
+<p><b>End time</b> (default 400 s, AvaFrame's): the cap. The run ends when the kinetic energy falls
+below the stop fraction of its peak; a run that the cap ends instead had not stopped: the algorithm
+says so (END_CONDITION cap, a warning with the volume still moving): raise the end time.</p>
+<p><b>Report maps</b> (REPORT_MAPS, default yes): PDF and PNG maps of the peak thickness, speed,
+pressure and the pressure zones (ZONES, kPa, default 1 10 30) drawn by <code>gfReportMaps</code>,
+a few seconds; outputs REPORT_FOLDER and the four PDFs (pictures, not loaded as layers).</p>
 <p><b>Entrainment / resistance</b> polygons switch the mass exchange on (simType ent, res, entres);
 a <b>dam</b> line is burnt into the DEM; with a <b>path</b> the path analysis runs (runout, runout
 angle, MMPPR, ...), with a <b>split point</b> the runout area starts at the beta point below it.</p>
 <p>Refused before anything runs: a DEM without a CRS, a layer in another CRS than the DEM, a release
-polygon outside the DEM, a missing or non-positive thickness. Cancel stops the run and removes its
-folder. The command that ran is in the log; rerun it in a shell to get the same files.</p>'''
+polygon outside the DEM, a missing or non-positive thickness, an output folder that holds inputs or
+a case the plugin did not write (a previous output of the plugin is replaced). Cancel stops the run
+and removes its folder. The command that ran is in the log; rerun it in a shell to get the same files.</p>'''
 
 
 class Simulation(GranflowAlgorithm):
