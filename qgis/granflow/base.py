@@ -201,8 +201,9 @@ class GranflowAlgorithm(QgsProcessingAlgorithm):
         if 'DEM' in self.parameter_names() and 'RELEASE' in self.parameter_names():
             self.case_inputs(parameters, context).check()
             self.zones(parameters, context)
-            if self.has_value(parameters, 'OUTPUT'):
-                check_folder(os.path.abspath(self.parameterAsString(parameters, 'OUTPUT', context)))
+            out = self.parameterAsString(parameters, 'OUTPUT', context) if self.has_value(parameters, 'OUTPUT') else ''
+            if out and out != 'TEMPORARY_OUTPUT':   # (a temporary folder is made new)
+                check_folder(os.path.abspath(out))
 
     def case_options(self, parameters, context, inputs):
         """gfRunCase's options for the parameters."""
