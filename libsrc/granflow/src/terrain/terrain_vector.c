@@ -123,7 +123,7 @@ static gf_status numeric_field(OGRFeatureDefnH defn, const char *path, const cha
             const size_t l = strlen(fields);
             snprintf(fields + l, sizeof fields - l, "%s%s", l ? ", " : "", OGR_Fld_GetNameRef(d));
         }
-        return gf_fail(GF_ENOTFOUND, "%s: no '%s' attribute; %s is needed there (the numeric"
+        return gf_fail(GF_ENOTFOUND, "%s: no attribute '%s'; %s is needed there (the numeric"
                                      " attributes of the file: %s)", path, field, need,
                        fields[0] ? fields : "none");
     }
