@@ -276,8 +276,7 @@ class GranflowAlgorithm(QgsProcessingAlgorithm):
             if line.startswith('results in '):
                 state['drawing'] = state['pending'] = False
             elif draw and not state['drawing'] and not os.path.isdir(report) \
-                    and (line.startswith('path analysis (') or line.startswith('no Inputs/LINES/')
-                         or 'gfReportMaps' in line):
+                    and (line.startswith('path analysis (') or line.startswith('no Inputs/LINES/')):
                 # the last step before the maps (gfRunCase draws them
                 # silently): they start when the output pauses after it
                 state['pending'] = True

@@ -186,7 +186,15 @@ def failure(tool, lines):
                 fatal.append(m.strip())
             break
     if own and not fatal:
-        return own[-1]
+        # the tool's last message, with its indented lines (the cause, the
+        # command that redoes a step)
+        i = len(lines) - 1 - lines[::-1].index(own[-1])
+        more = []
+        for l in lines[i + 1:i + 9]:
+            if not l.startswith(' '):
+                break
+            more.append(l.strip())
+        return ' '.join([own[-1]] + more)
     if fatal:
         return ' '.join(fatal)
     return '\n'.join(lines[-12:])
