@@ -11,9 +11,9 @@
 
 #define PI 3.14159265358979323846
 
-/* Sobol design: GSL's sequence is the published Sobol sequence without its
- * origin (dimensions 1-3: 1/2 1/2 1/2, 3/4 1/4 3/4, 1/4 3/4 1/4,
- * 3/8 3/8 5/8, 7/8 7/8 1/8, Bratley & Fox / Joe & Kuo); its first 15 points
+/* Sobol design: GSL's sequence is Sobol's in Gray-code order with Bratley &
+ * Fox's direction numbers, without its origin (dimensions 1-3: 1/2 1/2 1/2,
+ * 3/4 1/4 3/4, 1/4 3/4 1/4, 3/8 3/8 5/8, 7/8 7/8 1/8); its first 15 points
  * with the origin fill every stratum of 1/16 once in each dimension and every
  * box of 1/4 x 1/4 once in dimensions 1-2 (a (0, 4, 2)-net); skip drops the
  * first points */

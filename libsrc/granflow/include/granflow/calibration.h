@@ -53,8 +53,8 @@ gf_status gf_design_sobol(size_t n, size_t d, size_t skip, double *u);
 /** Morris's step on a p-level grid: Delta = p / (2 (p - 1)) (Morris 1991). */
 double gf_morris_delta(size_t p);
 
-/** Morris trajectories (Morris 1991, the randomised orientation of its
- *  section 3.3): r trajectories of d + 1 points each, u [r (d + 1), d]
+/** Morris trajectories (Morris 1991, with the random base point, directions
+ *  and order of the parameters): r trajectories of d + 1 points each, u [r (d + 1), d]
  *  (trajectory t's points are rows t (d + 1) .. t (d + 1) + d).  Each
  *  trajectory starts at a random base point on the p-level grid
  *  {0, 1/(p-1), ..., 1} and moves one parameter at a time, in a random order,
@@ -187,7 +187,7 @@ typedef struct gf_simplex_result {
  *  in R^d and f is called at the point folded into [0, 1]^d (each coordinate
  *  reflected at 0 and 1, a continuous map), so f is never called outside
  *  the box and a minimum on its boundary is reached.  Stops when the
- *  simplex's size (GSL's mean distance of its vertices from their centre,
+ *  simplex's size (GSL's root-mean-square distance of its vertices from their centre,
  *  unit coordinates) is below tol, or after max_evals calls of f (then
  *  converged = 0; the best point so far is still the result).  The result's
  *  arrays are allocated here; free them with gf_simplex_result_free.
@@ -266,7 +266,8 @@ typedef struct gf_emulator {
                              (the emulator's minimum itself when n_ridge = 0) */
     double ridge_t_min, ridge_t_max; /**< along the first ridge direction (smallest
                              curvature) from ridge_point, the parameter-unit distances to the
-                             box's faces (the ridge line's extent); 0 when n_ridge = 0 */
+                             box's faces (the ridge line's extent); 0 when n_ridge = 0, NAN
+                             when the line misses the box */
 } gf_emulator;
 
 /** Fit L(u) ~ c + g.(u - u*) + 1/2 (u - u*)' H (u - u*) by linear least squares
