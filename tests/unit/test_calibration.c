@@ -245,6 +245,8 @@ static void deposit_runout_series_scores_and_the_loss(void **state)
     w0 = w;
     w0.outline = -1;
     assert_int_equal(gf_loss(&s, &w0, &L), GF_EDOM);
+    w0.outline = NAN;
+    assert_int_equal(gf_loss(&s, &w0, &L), GF_ENONFINITE);
     s.tversky = 1.5;
     assert_int_equal(gf_loss(&s, &w, &L), GF_EDOM);
 }
@@ -398,7 +400,8 @@ static double angle_deg(const double *a, const double *b)
 }
 
 /* The emulator on L = (x - 2y)^2 + 0.01 y^2, x in [0, 4], y in [0, 2] (64
- * Sobol points): exact fit (R^2 = 1 to 1e-12), one ridge whose direction in
+ * Sobol points): exact fit (R^2 = 1 to 1e-12, the emulator equal to the loss
+ * to 1e-9), one ridge whose direction in
  * parameter units is (2, 1)/sqrt(5) within 1 deg (the unit-coordinate one is
  * (1, 1)/sqrt(2): the ranges convert it), the ridge point on the valley
  * x = 2y and the ridge line crossing the box from (0, 0) to (4, 2) (length
@@ -433,7 +436,10 @@ static void emulator_reports_the_ridge_and_the_bowl(void **state)
     assert_true(em.curvature[1] < GF_RIDGE_FRACTION * em.curvature[0]);
     assert_close(em.ridge_point[0] - 2 * em.ridge_point[1], 0.0, 1e-3);
     assert_close(em.ridge_t_max - em.ridge_t_min, sqrt(20.0), 0.01);
+    for (int i = 0; i < N; i += 7) /* the loss is quadratic: the emulator reproduces it */
+        assert_close(gf_emulator_eval(&em, u + 2 * i), L[i], 1e-9);
     gf_emulator_free(&em);
+    assert_true(isnan(gf_emulator_eval(&em, u)));
 
     for (int i = 0; i < N; ++i) {
         const double x = u[2 * i], y = u[2 * i + 1];
@@ -526,6 +532,10 @@ static void unreachable_observation_is_reported(void **state)
     gf_reach_criteria cn = {NAN, NAN, NAN};
     assert_int_equal(gf_reach_verdict(N, L, J, R, &cn, &v), GF_EINVAL);
     assert_int_equal(gf_reach_verdict(N, L, NULL, R, &cj, &v), GF_EINVAL);
+    gf_reach_criteria neg = {NAN, NAN, -1.0};
+    assert_int_equal(gf_reach_verdict(N, L, J, R, &neg, &v), GF_EDOM);
+    L[4] = NAN;
+    assert_int_equal(gf_reach_verdict(N, L, J, R, &cr, &v), GF_ENONFINITE);
 }
 
 int main(void)

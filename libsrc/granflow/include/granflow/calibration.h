@@ -153,9 +153,10 @@ typedef struct gf_loss_weights {
  *  e_runout = |runout_error| / runout_scale, e_outline = 1 - tversky,
  *  e_rmse = rmse / rmse_scale, e_series = series_rmse / series_scale: 0 for
  *  a perfect match, 1 for an error of one scale or no overlap.  Refused:
- *  s/w/loss NULL (GF_EINVAL); a negative or non-finite weight, a scale <= 0
- *  of a weighted term, tversky outside [0, 1], rmse < 0 (GF_EDOM); no term
- *  both observed and weighted (GF_EDOM). */
+ *  s/w/loss NULL (GF_EINVAL); a negative weight, a scale <= 0 or not finite
+ *  of a weighted and observed term, tversky outside [0, 1], an RMSE < 0, no
+ *  term both observed and weighted (GF_EDOM); a non-finite weight or an
+ *  infinite score (GF_ENONFINITE). */
 gf_status gf_loss(const gf_scores *s, const gf_loss_weights *w, double *loss);
 
 /* ------------------------------------------------------------------ */
@@ -288,6 +289,11 @@ gf_status gf_emulator_fit(size_t n, size_t d, const double *u, const double *los
                           const double *lo, const double *hi, double fraction, gf_emulator *em);
 void gf_emulator_free(gf_emulator *em);
 
+/** The fitted quadratic at u [d] (unit coordinates): loss0 + g.(u - u*) +
+ *  1/2 (u - u*)' H (u - u*), for the loss picture over a pair of parameters.
+ *  NAN when em or u is NULL or em holds no fit. */
+double gf_emulator_eval(const gf_emulator *em, const double *u);
+
 /** The verdict on an observation. */
 typedef enum gf_verdict {
     GF_REACHABLE = 0,  /**< some evaluation meets every criterion */
@@ -315,7 +321,9 @@ typedef struct gf_reach_result {
  *  given, unreachable otherwise — never a silent best guess.  loss [n]
  *  required; jaccard [n] and runout_error [n] may be NULL when their
  *  criterion is NAN.  Refused: n < 1, loss/c/res NULL, a criterion's array
- *  NULL, no criterion given (GF_EINVAL); a non-finite value (GF_ENONFINITE). */
+ *  NULL, no criterion given (GF_EINVAL); a negative runout tolerance
+ *  (GF_EDOM); an infinite criterion or a non-finite value of a used array
+ *  (GF_ENONFINITE). */
 gf_status gf_reach_verdict(size_t n, const double *loss, const double *jaccard,
                            const double *runout_error, const gf_reach_criteria *c,
                            gf_reach_result *res);

@@ -411,6 +411,21 @@ done:
     return st;
 }
 
+double gf_emulator_eval(const gf_emulator *em, const double *u)
+{
+    if (!em || !u || !em->d || !em->center || !em->gradient || !em->hessian)
+        return NAN;
+    const size_t d = em->d;
+    double L = em->loss0;
+    for (size_t j = 0; j < d; ++j) {
+        const double a = u[j] - em->center[j];
+        L += em->gradient[j] * a;
+        for (size_t l = 0; l < d; ++l)
+            L += 0.5 * a * em->hessian[j * d + l] * (u[l] - em->center[l]);
+    }
+    return L;
+}
+
 /* ------------------------------------------------------------ verdict */
 
 gf_status gf_reach_verdict(size_t n, const double *loss, const double *jaccard,
@@ -425,11 +440,12 @@ gf_status gf_reach_verdict(size_t n, const double *loss, const double *jaccard,
     if ((use_j && !jaccard) || (use_r && !runout_error))
         return gf_fail(GF_EINVAL, "reach verdict: a criterion on the %s is given without its values",
                        use_j && !jaccard ? "Jaccard index" : "runout error");
-    if ((use_loss && isinf(c->max_loss)) || (use_j && isinf(c->min_jaccard)) ||
-        (use_r && (isinf(c->runout_tolerance) || c->runout_tolerance < 0)))
+    if ((use_loss && isinf(c->max_loss)) || (use_j && isinf(c->min_jaccard)) || (use_r && isinf(c->runout_tolerance)))
         return gf_fail(GF_ENONFINITE, "reach verdict: criteria max_loss %g, min_jaccard %g, runout tolerance %g must "
-                                      "be finite (tolerance >= 0) or NAN",
+                                      "be finite or NAN (not used)",
                        c->max_loss, c->min_jaccard, c->runout_tolerance);
+    if (use_r && c->runout_tolerance < 0)
+        return gf_fail(GF_EDOM, "reach verdict: runout tolerance %g m must be >= 0", c->runout_tolerance);
     size_t best = 0, meet = 0;
     for (size_t i = 0; i < n; ++i) {
         if (!isfinite(loss[i]) || (use_j && !isfinite(jaccard[i])) || (use_r && !isfinite(runout_error[i])))
