@@ -17,6 +17,7 @@
 #include "granflow/sh1d.h"
 #include "granflow/surface.h"
 #include "granflow/ensemble.h"
+#include "granflow/calibration.h"
 #include "granflow/version.h" /* GF_VERSION_STRING, gf_version() */
 /* test and benchmark helpers: granflow/verification.h */
 
