@@ -80,11 +80,13 @@ Usage
 #include "memberRuns.H"
 #include "createMeshes.H"
 #include "releaseFreedMemory.H"
+#include "fastExit.H"
 
 int main(int argc, char *argv[])
 {
     granflow::keepFreedMemory();   // the implicit scheme's many temporary fields (keepFreedMemory.H)
     granflow::runProfile setupProfile;  // where the wall time and memory go (runProfile.H)
+    setupProfile.markProcessStart();    // the process before main: libraries loaded and initialised
     argList::addNote
     (
         "Shallow granular flow on curved 3D surfaces (Rauter-Tukovic model)"
@@ -181,8 +183,11 @@ int main(int argc, char *argv[])
             {
                 Info<< "hazardMaps yes: skipped in this parallel run: reconstructPar, then gfHazardMaps" << nl;
             }
-            profile.report(Info);
-            Info<< "End" << nl << endl;
+            if (members.on())
+            {
+                profile.report(Info);
+                Info<< "End" << nl << endl;
+            }
             members.done();
         }
         catch (const Foam::error& e)
@@ -196,5 +201,15 @@ int main(int argc, char *argv[])
             members.failed(e.what());
         }
     }
+    if (!members.on())
+    {
+        // the run's fields, scheme, peaks and maps were freed with its scope
+        setupProfile.mark("end of the run (its fields freed)");
+        setupProfile.report(Info);
+        Info<< "End" << nl << endl;
+    }
+    // every file is written and closed: a serial process ends here, without
+    // destroying the meshes, the Time and the libraries' static objects (fastExit.H)
+    granflow::fastExit(runTime);
     return 0;
 }
