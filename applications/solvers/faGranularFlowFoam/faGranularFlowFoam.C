@@ -31,6 +31,9 @@ Description
     mass balance (volume + outflow - inflow = initial) is printed at every
     written time; the smallest h before the thickness safety net, the steps
     where it acted and any time step capped by maxDeltaT are reported at the end.
+    The last step lands on endTime as on a write time and is written even
+    off the write grid (memberRuns.H, memberTime::setDeltaTToEnd), so that
+    the hazard maps, reconstructPar and a restart find the final state.
     The explicit scheme can end a run before endTime once the flow has
     stopped (controlDict stopCriterion kineticEnergy: the total kinetic
     energy below stopFraction, 1 %, of its running peak, as AvaFrame ends its
@@ -42,7 +45,10 @@ Description
     energyLine yes the run writes its mass-averaged path for the energy-line
     test (energyLine.H).  With controlDict setFields (releaseDict ...) a run
     that starts at t = 0 sets its release (and the mass exchange's inputs)
-    itself, as gfSetRelease would (setFieldsAtStart.H).
+    itself, as gfSetRelease would (setFieldsAtStart.H).  The profile at the
+    end of the log counts from the process's start (runProfile.H), and a
+    serial run ends without its teardown once every file is closed
+    (fastExit.H).
 
 Usage
     faGranularFlowFoam [-parallel] [-keywords] [-version] [-members FILE]
