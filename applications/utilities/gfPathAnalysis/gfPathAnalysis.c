@@ -41,7 +41,8 @@ static void usage(FILE *f)
                "Writes to DIR:\n"
                "pathAnalysis.csv (one row per run), pathProfile.csv (along s), pathGrid.csv\n"
                "(the (s, l) grid), summary.dat, and pathField.png, pathProfile.png,\n"
-               "pathCompare.png (gnuplot).\n\noptions:\n");
+               "pathCompare.png (one gnuplot process; the .gp scripts, pathField.dat and gnuplot.log\n"
+               "stay beside them).\n\noptions:\n");
     for (size_t k = 0; k < n; ++k)
         fprintf(f, "  %-12s %-7s %s (default %s%s%s)\n", o[k].key, o[k].type, o[k].what,
                 o[k].dflt, *o[k].unit ? "; unit " : "", o[k].unit);

@@ -258,14 +258,19 @@ static gf_status analyse_run(const call *C, run *R, const gf_path_grid *g, int f
     return GF_SUCCESS;
 }
 
-static void run_gnuplot(const call *C, const settings *S, const char *name)
+/* the plot scripts written, in one gnuplot process (cd to the folder: the
+ * scripts name their files relatively, so they rerun alone there); each
+ * script starts with 'reset', so that one's settings do not reach the next.
+ * One process for all of them: a gnuplot start (pngcairo) is about 0.09 s of
+ * CPU; its log is gnuplot.log */
+static void run_gnuplot(const call *C, const settings *S, const char *names)
 {
     char cmd[2 * PATHMAX];
-    snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot '%s' > '%s.log' 2>&1", S->dir_path, name, name);
+    snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot %s > gnuplot.log 2>&1", S->dir_path, names);
     const int rc = system(cmd);
     if (rc != 0 && C->io && C->io->warning) {
         char msg[2 * PATHMAX];
-        snprintf(msg, sizeof msg, "gnuplot failed on %s/%s (see %s/%s.log)", S->dir, name, S->dir, name);
+        snprintf(msg, sizeof msg, "gnuplot failed on %s/{%s} (see %s/gnuplot.log)", S->dir, names, S->dir);
         C->io->warning(C->io->ctx, msg);
     }
 }
@@ -561,17 +566,33 @@ static gf_status print_summary(const call *C, const settings *S, const analysis 
 }
 
 /* pathField.png: the field in path coordinates (s, l) */
-static gf_status plot_field(const call *C, const settings *S, const analysis *A, int before)
+static gf_status plot_field(const call *C, const settings *S, const analysis *A)
 {
     const gf_path_grid *g = &A->g;
     const run *R = &A->R;
     const int field = S->field;
     const double thr = S->thr;
-    const int col = 6 + before; /* the field's column in pathGrid.csv */
     double vmax = R->mma[field] > thr ? R->mma[field] : thr * 2;
+    /* the plotted values in pathField.dat (l, s, the field where it is above
+     * 1 % of the threshold, else NaN: not drawn): gnuplot reads these three
+     * columns in a third of the time it took for pathGrid.csv's columns with
+     * the masking expression (0.12 against 0.34 s on avaKot, the same PNG
+     * byte for byte) */
+    FILE *dat;
+    TRY(open_out(C, S, "pathField.dat", &dat));
+    for (size_t i = 0; i < g->ns; ++i) {
+        for (size_t j = 0; j < g->nl; ++j) {
+            const double v = R->a[field][i * g->nl + j];
+            fprintf(dat, "%.10g %.10g ", g->l[j], g->s[i]);
+            fprintf(dat, !isnan(v) && v > 0.01 * thr ? "%.8g\n" : "NaN\n", v);
+        }
+        fprintf(dat, "\n");
+    }
+    if (fclose(dat) != 0)
+        return fail(C, GF_EIO, "%s/pathField.dat: cannot write it", S->dir);
     FILE *gp;
     TRY(open_out(C, S, "pathField.gp", &gp));
-    fprintf(gp, "set datafile separator ','\n"
+    fprintf(gp, "reset\n"
                 "set terminal pngcairo size 700,900 font ',10' noenhanced\nset output 'pathField.png'\n"
                 "set title \"%s: peak %s in path coordinates (s, l)\"\n"
                 "set xlabel 'l [m] (> 0: left looking down the path)'\nset ylabel 's [m]'\n"
@@ -593,10 +614,9 @@ static gf_status plot_field(const call *C, const settings *S, const analysis *A,
                 g->s[A->i_beta]);
     fprintf(gp, "set arrow from 0,%g to 0,%g nohead dt 3 lc rgb 'blue' front\n"
                 "set object circle at %g,%g size %g fs empty border lc rgb 'black' lw 2 front\n"
-                "plot 'pathGrid.csv' skip 1 using 2:1:($%d > %g ? $%d : NaN) with image notitle\n",
-            g->s[0], g->s[g->ns - 1], R->ro.l_runout, R->ro.s_runout, 3.0 * g->h, col, 0.01 * thr, col);
+                "plot 'pathField.dat' using 1:2:3 with image notitle\n",
+            g->s[0], g->s[g->ns - 1], R->ro.l_runout, R->ro.s_runout, 3.0 * g->h);
     fclose(gp);
-    run_gnuplot(C, S, "pathField.gp");
     return GF_SUCCESS;
 }
 
@@ -610,7 +630,7 @@ static gf_status plot_profile(const call *C, const settings *S, const analysis *
     const int pc = 5 + 2 * before; /* its cross max in pathProfile.csv */
     FILE *gp;
     TRY(open_out(C, S, "pathProfile.gp", &gp));
-    fprintf(gp, "set datafile separator ','\n"
+    fprintf(gp, "reset\nset datafile separator ','\n"
                 "set terminal pngcairo size 1000,500 font ',10' noenhanced\nset output 'pathProfile.png'\n"
                 "set title \"%s: cross-section maximum and mean of %s along the path; runout angle %.1f deg\"\n"
                 "set xlabel 's [m]'\nset ylabel '%s [%s]'\nset y2label 'z [m]'\nset ytics nomirror\n"
@@ -645,7 +665,6 @@ static gf_status plot_profile(const call *C, const settings *S, const analysis *
                 "%.10g,%.10g\n%.10g,%.10g\ne\n",
             R->ro.angle, R->ro.s_start, R->ro.z_start, R->ro.s_runout, R->ro.z_runout);
     fclose(gp);
-    run_gnuplot(C, S, "pathProfile.gp");
     return GF_SUCCESS;
 }
 
@@ -659,7 +678,7 @@ static gf_status plot_compare(const call *C, const settings *S, const analysis *
     const int cc = 6 + R->has[0] + R->has[1] + R->has[2] + 1;
     FILE *gp;
     TRY(open_out(C, S, "pathCompare.gp", &gp));
-    fprintf(gp, "set datafile separator ','\n"
+    fprintf(gp, "reset\nset datafile separator ','\n"
                 "set terminal pngcairo size 700,900 font ',10' noenhanced\nset output 'pathCompare.png'\n"
                 "set title \"%s against %s: %s > %g %s in the runout area\\nTP %.3f, FP %.3f, FN %.3f of A_ref = %.0f m2\"\n"
                 "set xlabel 'l [m]'\nset ylabel 's [m]'\nset yrange [%g:%g] reverse\nset xrange [%g:%g]\n"
@@ -675,7 +694,6 @@ static gf_status plot_compare(const call *C, const settings *S, const analysis *
             g->s[g->ns - 1], g->l[0], g->l[g->nl - 1], g->l[0], g->s[A->i_beta], g->l[g->nl - 1], g->s[A->i_beta],
             cc, cc);
     fclose(gp);
-    run_gnuplot(C, S, "pathCompare.gp");
     return GF_SUCCESS;
 }
 
@@ -685,10 +703,11 @@ static gf_status write_plots(const call *C, const settings *S, const analysis *A
     int before = 0; /* rasters of the run before the field's */
     for (int f = 0; f < S->field; ++f)
         before += A->R.has[f];
-    TRY(plot_field(C, S, A, before));
+    TRY(plot_field(C, S, A));
     TRY(plot_profile(C, S, A, before));
     if (S->has_ref)
         TRY(plot_compare(C, S, A));
+    run_gnuplot(C, S, S->has_ref ? "pathField.gp pathProfile.gp pathCompare.gp" : "pathField.gp pathProfile.gp");
     return GF_SUCCESS;
 }
 
@@ -729,8 +748,8 @@ static gf_status analysis_run(call *C, size_t n, const char *const *kv, settings
     if (!line)
         return fail(C, GF_ENOMEM, "out of memory");
     snprintf(line, m, "wrote %s/{pathAnalysis.csv,pathProfile.csv,pathGrid.csv,summary.dat%s}", S->dir,
-             !S->plots ? "" : (S->has_ref ? ",pathField.png,pathProfile.png,pathCompare.png"
-                                          : ",pathField.png,pathProfile.png"));
+             !S->plots ? "" : (S->has_ref ? ",pathField.dat,pathField.png,pathProfile.png,pathCompare.png"
+                                          : ",pathField.dat,pathField.png,pathProfile.png"));
     say(C, line);
     free(line);
     return GF_SUCCESS;
