@@ -167,12 +167,14 @@ int main(int argc, char *argv[])
                 // implicitLoop.H): the maps of the final state, the latest
                 // written time, as gfHazardMaps makes them afterwards
                 peaks.flush();
-                const instant last(runTime.value(), runTime.timeName());
+                instant last(runTime.value(), runTime.timeName());
                 if (!isDir(runTime.timePath()))
                 {
-                    FatalErrorInFunction
-                        << "hazardMaps: the final time " << runTime.timeName() << " s was not written"
-                        << exit(FatalError);
+                    // only stopAt noWriteNow ends a run without writing its last step
+                    last = runTime.times().last();
+                    Info<< "hazardMaps: the run ended at t = " << runTime.timeName() << " s without"
+                        << " writing it (stopAt noWriteNow); the maps are those of the latest written"
+                        << " time " << last.name() << " s" << nl;
                 }
                 Info<< nl << "Hazard maps of time " << last.name() << " s:" << nl;
                 maps->write(last);
