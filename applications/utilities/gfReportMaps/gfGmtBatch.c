@@ -29,6 +29,10 @@
  *                        the line turned upright (for text -F+a)
  *   gfifdata FILE CALL...   CALL when FILE exists and is not empty
  *   gftry CALL...        CALL, its failure reported but not stopping the batch
+ *   gfsync               prints "gfsync" on standard output once every call
+ *                        before it has run (a script feeding the calls on
+ *                        standard input waits for it, then reads what they
+ *                        wrote: one process for the whole report)
  *   gfconvert DPI MARGIN NAME...
  *                        NAME.ps (a figure of `figure NAME ps`, written by
  *                        `end`) -> NAME.pdf and NAME.png, cropped to the
@@ -559,6 +563,11 @@ static int call(void* api, int n, char** args, const char* file, long nline)
             return 1;
         }
         return convert_figures(n - 3, args + 3, args[1], args[2]);
+    }
+    if (strcmp(args[0], "gfsync") == 0) {
+        const int bad = printf("gfsync\n") < 0 || fflush(stdout) != 0;
+        if (bad) fprintf(stderr, "gfGmtBatch: %s line %ld: gfsync: standard output is closed\n", file, nline);
+        return bad;
     }
     if (strcmp(args[0], "gfifdata") == 0) {
         if (n < 3) {
