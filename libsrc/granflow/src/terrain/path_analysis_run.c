@@ -265,8 +265,19 @@ static gf_status analyse_run(const call *C, run *R, const gf_path_grid *g, int f
  * CPU; its log is gnuplot.log */
 static void run_gnuplot(const call *C, const settings *S, const char *names)
 {
-    char cmd[2 * PATHMAX];
-    snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot %s > gnuplot.log 2>&1", S->dir_path, names);
+    /* the folder single-quoted for the shell, a quote in it as '\'' (a
+     * folder may be named "Lawinen d'Hérens") */
+    char quoted[4 * PATHMAX], cmd[5 * PATHMAX];
+    size_t q = 0;
+    for (const char *p = S->dir_path; *p && q + 5 < sizeof quoted; ++p) {
+        if (*p == '\'') {
+            memcpy(quoted + q, "'\\''", 4);
+            q += 4;
+        } else
+            quoted[q++] = *p;
+    }
+    quoted[q] = '\0';
+    snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot %s > gnuplot.log 2>&1", quoted, names);
     const int rc = system(cmd);
     if (rc != 0 && C->io && C->io->warning) {
         char msg[2 * PATHMAX];
