@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* Ensembles (hazard-analysis specification, section 4): the samplers and
+/* Ensembles (doc/theory/hazard-analysis.md, section 4): the samplers and
  * percentiles of libgranflow (granflow/ensemble.h) and the probability raster
  * and its contour lines of libgranflowTerrain (granflow/terrain.h), against
  * what they must be exactly. */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The path analysis of peak rasters (granflow/path_analysis.h;
- * hazard-analysis specification sections 1-3) against closed forms: synthetic
+ * doc/theory/hazard-analysis.md sections 1-3) against closed forms: synthetic
  * DEMs and fields written with GDAL (GeoTIFF, float64) into a temporary
  * folder and read back as any raster is.
  *

@@ -359,7 +359,7 @@ static void incdam_check_values_at_5s(void **state)
     assert_digits(xf, 30.088, 0.5e-3);
     assert_digits(xm, -73.214, 0.5e-3);
     assert_digits(ub, 0.9169, 0.5e-4);
-    /* the specification prints 6.9487 for 6.94875043 (2 cL + 5 m0): its
+    /* doc/theory/standard-tests.md prints 6.9487 for 6.94875043 (2 cL + 5 m0): its
      * last digit is truncated, not rounded, so one unit of it is allowed */
     assert_digits(u, 6.9487, 1e-4);
     assert_close(u, 2.0 * d.cL + d.m0 * 5.0, 1e-6);

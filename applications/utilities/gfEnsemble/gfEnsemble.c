@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
- * gfEnsemble — the numerical steps of an ensemble of runs (hazard-analysis
- * specification, section 4); the driver gfRunEnsemble calls them.
+ * gfEnsemble — the numerical steps of an ensemble of runs (doc/theory/hazard-analysis.md,
+ * section 4); the driver gfRunEnsemble calls them.
  *
  *   gfEnsemble sample latinHypercube N D SEED
  *   gfEnsemble sample oneAtATime STEPS D

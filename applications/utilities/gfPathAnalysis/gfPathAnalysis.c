@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
- * gfPathAnalysis — the path analysis of peak rasters (hazard-analysis
- * specification, sections 1-3; AvaFrame's ana3AIMEC): runout along the
+ * gfPathAnalysis — the path analysis of peak rasters (doc/theory/hazard-analysis.md,
+ * sections 1-3; AvaFrame's ana3AIMEC): runout along the
  * avalanche path, runout angle, the MMA/AMA indicators and, given a
  * reference run, the TP/FP/FN/TN areas in the runout area.  The computation
  * and its files are libgranflowTerrain's (gf_path_analysis_run,

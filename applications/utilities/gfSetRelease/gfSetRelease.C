@@ -46,8 +46,7 @@ Description
         default  0;
         regions  ( polygons { file "Inputs/ENT/entrainment.shp"; attribute thickness; } );
 
-    An ensemble member's release (gfRunEnsemble; hazard-analysis
-    specification, section 4): with -ci95Sample z (z in [-1, 1]) every
+    An ensemble member's release (gfRunEnsemble; doc/theory/hazard-analysis.md, section 4): with -ci95Sample z (z in [-1, 1]) every
     polygons region's thickness d becomes d + z ci95, the half-width of its
     95 % confidence interval given by the region's 'ci95' [m] or its
     polygons' attribute 'ci95Attribute' (AvaFrame's ci95); a region without

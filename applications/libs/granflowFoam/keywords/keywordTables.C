@@ -100,7 +100,7 @@ std::vector<row> terrainRows()
          "subtracted from the georeferenced coordinates; default the south-west corner of the"
          " mesh nodes and their lowest elevation, rounded down to metres"},
         {"dam", "dictionary", "-", "", "", "",
-         "a dam burned into the DEM before meshing (mass-exchange specification, section 3):"
+         "a dam burned into the DEM before meshing (doc/theory/mass-exchange.md, section 3):"
          " entries file, slope; gfTerrainMesh writes the raised DEM to constant/demWithDam.tif"},
     };
 }
@@ -111,7 +111,7 @@ table damTable(const std::string& parent, const std::string& file, const std::st
     return
     {
         parent + "/dam", file, "dam/", program,
-        "A dam (mass-exchange specification, section 3): the DEM becomes the larger of the"
+        "A dam (doc/theory/mass-exchange.md, section 3): the DEM becomes the larger of the"
         " ground and the dam surface z_c - tan(slope) d, z_c the crown elevation at the nearest"
         " point of the crown line and d the horizontal distance to it.",
         true, "",

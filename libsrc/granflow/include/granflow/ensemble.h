@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — ensembles of runs: the sampling of uncertain inputs and the
- * statistics of the members' results (hazard-analysis specification,
+ * statistics of the members' results (doc/theory/hazard-analysis.md,
  * section 4 "Probability maps from an ensemble").
  *
  * An ensemble varies d uncertain inputs around a reference case.  The
@@ -34,7 +34,7 @@ void gf_rng_seed(gf_rng *r, uint64_t seed);
 /* Uniform in [0, 1), 53 random bits. */
 double gf_rng_uniform(gf_rng *r);
 
-/* Latin hypercube sample (the specification's default, AvaFrame's
+/* Latin hypercube sample (AvaFrame's default,
  * "latinHypercube"): n members, d inputs; u [n d] row-major.  For every
  * input each of the n strata [k/n, (k+1)/n) holds exactly one member, at a
  * uniformly random place inside it, the strata assigned to the members by
@@ -42,7 +42,7 @@ double gf_rng_uniform(gf_rng *r);
  * NULL. */
 gf_status gf_sample_latin_hypercube(size_t n, size_t d, uint64_t seed, double *u);
 
-/* One parameter at a time (the specification's alternative): d x steps
+/* One parameter at a time (doc/theory/hazard-analysis.md's alternative): d x steps
  * members; member j steps + k varies input j to k/(steps - 1) (steps >= 2:
  * from the lower to the upper end of its range) and holds every other input
  * at 0.5 (the reference); u [d steps, d].  Refused: steps < 2, d < 1, u

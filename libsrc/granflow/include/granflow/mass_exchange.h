@@ -37,7 +37,7 @@
 extern "C" {
 #endif
 
-/* Parameters (spec §1, §2), defaults from the specification. */
+/* Parameters (doc/theory/mass-exchange.md, sections 1 and 2), AvaFrame's defaults. */
 typedef struct gf_mass_exchange_config {
     int entrainment;      /* 1: entrainment where the entrainable layer is > 0 (simType ent, entres) */
     int resistance;       /* 1: resistance areas act (simType res, entres) */
@@ -55,7 +55,7 @@ typedef struct gf_mass_exchange_config {
     double h_min, h_max;  /* thickness window, 0 <= h_min <= h_max [m] (0.6, 10) */
 } gf_mass_exchange_config;
 
-/* Defaults of the specification: simType null (entrainment, resistance 0),
+/* AvaFrame's defaults (doc/theory/mass-exchange.md): simType null (entrainment, resistance 0),
  * detrainment 1, rho_ent 100 kg/m^3, h_ent 0.3 m, e_b 5000 J/kg, e_s 0,
  * e_d 0, K 5 Pa, c_res 0.01, v_min 6 m/s, v_max 40 m/s, h_min 0.6 m,
  * h_max 10 m. */

@@ -373,16 +373,16 @@ gf_status gf_surface_set_mass_exchange(gf_surface *s, const gf_mass_exchange_con
 const double *gf_surface_entrainable_depth(const gf_surface *s);
 /* Cumulative flow thickness [m] (at the flow density rho) that each owned
  * face gained by entrainment / lost by detrainment [n_faces]: the
- * entrained-depth and detrained-depth rasters of spec section 4 (mass per
+ * entrained-depth and detrained-depth rasters of doc/theory/mass-exchange.md, section 4 (mass per
  * area: rho times it); NULL without mass exchange. */
 const double *gf_surface_entrained_depth(const gf_surface *s);
 const double *gf_surface_detrained_depth(const gf_surface *s);
 
 /* Exchanged volumes [m^3] of this rank's owned faces at the flow density
  * (mass: rho times them): of the last gf_surface_step and since
- * gf_surface_set_mass_exchange (spec section 4's mass time series); all 0
+ * gf_surface_set_mass_exchange (doc/theory/mass-exchange.md, section 4's mass time series); all 0
  * without mass exchange.  Of the detrained volume, the part taken in the
- * speed window (|u| < v_min: the rate K/|u| of spec section 2) and of that
+ * speed window (|u| < v_min: the rate K/|u| of doc/theory/mass-exchange.md, section 2) and of that
  * the part taken at rest (|u| = 0, where the rate is unbounded and the whole
  * face goes); the rest was faster than v_min and thinner than h_min.
  * AvaFrame's com1DFA detrains nothing at rest (doc/guide/avaframe-comparison.md). */

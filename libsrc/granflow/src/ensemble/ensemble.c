@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Ensembles: sampling of the uncertain inputs and the members' statistics
- * (granflow/ensemble.h; hazard-analysis specification, section 4). */
+ * (granflow/ensemble.h; doc/theory/hazard-analysis.md, section 4). */
 #include "granflow/ensemble.h"
 #include "internal.h"
 

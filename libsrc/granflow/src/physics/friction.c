@@ -120,7 +120,7 @@ static const gf_friction_param samosat_params[] = {
     {"u0", "m/s", "regularisation speed of the Coulomb and yield parts", 1e-4, 0.0, 1.0},
 };
 /* tau_b = tau0 + mu (1 + Rs0/(Rs0 + Rs)) sigma_b + rho u^2 / (ln(h/R)/kappa + B)^2,
- * Rs = rho u^2/(sigma_b + 0.001 Pa), ln(h/R) = 0 for h < R (the specification);
+ * Rs = rho u^2/(sigma_b + 0.001 Pa), ln(h/R) = 0 for h < R (doc/theory/friction.md);
  * the yield and Coulomb parts need contact (sigma_b > 0) and carry the factor
  * |u|/(|u| + u0) of the other laws, so tau at rest is tau0 + 2 mu sigma_b with
  * u0 = 0 (exact) and 0 with u0 > 0 (regularised, as the implicit scheme needs). */
