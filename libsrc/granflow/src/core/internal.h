@@ -3,6 +3,11 @@
 #ifndef GRANFLOW_INTERNAL_H
 #define GRANFLOW_INTERNAL_H
 
+/* The longest error detail gf_fail keeps (gf_error_detail): room for a few
+ * file names of any length a message names (case paths of several hundred
+ * characters, PATH_MAX each at most). */
+#define GF_DETAIL_MAX 16384
+
 #include "granflow/constants.h"
 #include "granflow/status.h"
 

@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-static _Thread_local char gf_detail[512];
+static _Thread_local char gf_detail[GF_DETAIL_MAX];
 
 const char *gf_strerror(gf_status status)
 {

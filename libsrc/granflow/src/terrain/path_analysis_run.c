@@ -84,7 +84,8 @@ typedef struct analysis {
     size_t i_split, i_beta;     /* the split point and the beta point on the path */
     double split_dist;
     gf_path_areas ar;           /* the comparison in the runout area */
-    char note[4 * NF][640];     /* rasters on another grid, grid points they do not cover */
+    char note[4 * NF][2 * PATHMAX + 640]; /* rasters on another grid, grid points they do not cover
+                                          (two file names of any length a line) */
     int n_note;
 } analysis;
 
@@ -536,7 +537,7 @@ static gf_status print_summary(const call *C, const settings *S, const analysis 
     const double thr = S->thr;
     FILE *s;
     TRY(open_out(C, S, "summary.dat", &s));
-    char line[1024];
+    char line[3 * PATHMAX]; /* a line names up to two files (the notes) */
 #define SAY(...)                                   \
     do {                                           \
         snprintf(line, sizeof line, __VA_ARGS__); \

@@ -209,7 +209,7 @@ gf_status gf_probability_map(size_t n, const char *const *paths, double threshol
     for (size_t m = 0; m < n; ++m) {
         gf_raster r;
         if ((st = gf_raster_read(paths[m], &r))) {
-            char why[512];
+            char why[GF_DETAIL_MAX];
             snprintf(why, sizeof why, "%s", gf_error_detail());
             st = gf_fail(st, "probability map: member %zu of %zu: %s", m + 1, n, why);
             break;
