@@ -61,6 +61,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <ini.h>
 
@@ -75,7 +78,8 @@
 #define MAXT 64
 
 typedef struct entry {
-    char section[32], key[32], value[512];
+    char section[32], key[32];
+    char *value; /* any length (an output folder's path) */
     int used;
 } entry;
 
@@ -98,30 +102,47 @@ static void die(const char *fmt, ...)
     exit(2);
 }
 
-/* formatted path; a path that does not fit is an error, never truncated */
-static void mkpath(char *buf, size_t size, const char *fmt, ...)
+/* a copy of s (the program stops when memory is out) */
+static char *dup_str(const char *s)
+{
+    char *c = strdup(s);
+    if (!c)
+        die("out of memory");
+    return c;
+}
+
+/* a formatted path of any length, allocated (free it) */
+static char *mkpath(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    const int r = vsnprintf(buf, size, fmt, ap);
+    const int r = vsnprintf(NULL, 0, fmt, ap);
     va_end(ap);
-    if (r < 0 || (size_t)r >= size)
-        die("output path too long (%d characters)", r);
+    char *buf = r < 0 ? NULL : malloc((size_t)r + 1);
+    if (!buf)
+        die("out of memory for an output path");
+    va_start(ap, fmt);
+    vsnprintf(buf, (size_t)r + 1, fmt, ap);
+    va_end(ap);
+    return buf;
 }
 
 static void put(ini_data *d, const char *sec, const char *key, const char *val)
 {
     for (int i = 0; i < d->n; ++i)
         if (!strcmp(d->e[i].section, sec) && !strcmp(d->e[i].key, key)) {
-            snprintf(d->e[i].value, sizeof d->e[i].value, "%s", val);
+            free(d->e[i].value);
+            d->e[i].value = dup_str(val);
             return;
         }
     if (d->n == MAXE)
         die("too many entries");
     entry *e = &d->e[d->n++];
+    if (strlen(sec) >= sizeof e->section || strlen(key) >= sizeof e->key)
+        die("[%s] %s: a section or key name longer than %zu characters", sec, key, sizeof e->key - 1);
     snprintf(e->section, sizeof e->section, "%s", sec);
     snprintf(e->key, sizeof e->key, "%s", key);
-    snprintf(e->value, sizeof e->value, "%s", val);
+    e->value = dup_str(val);
     e->used = 0;
 }
 
@@ -419,6 +440,25 @@ static void read_case(int argc, char **argv, gf1d_case *cs)
 {
     static ini_data d;
     cs->file = file_name = argv[1];
+    {
+        /* inih reads a line into INI_MAX_LINE bytes (newline and NUL
+           included) and would cut a longer one into a syntax error: refuse it
+           by name (a long output folder goes on the command line) */
+        FILE *f = fopen(argv[1], "r");
+        char *line = NULL;
+        size_t cap = 0;
+        ssize_t len;
+        for (int no = 1; f && (len = getline(&line, &cap, f)) >= 0; ++no) {
+            len -= len > 0 && line[len - 1] == '\n';
+            if (len > INI_MAX_LINE - 2)
+                die("line %d has %zd bytes, more than the case-file reader's %d; give a long value on "
+                    "the command line instead (an output folder: granflow1d %s output.dir=FOLDER)",
+                    no, len, INI_MAX_LINE - 2, argv[1]);
+        }
+        free(line);
+        if (f)
+            fclose(f);
+    }
     const int ir = ini_parse(argv[1], handler, &d);
     if (ir < 0)
         die("cannot read the case file");
@@ -652,13 +692,12 @@ static void setup_exact(const gf1d_case *cs, gf_riemann *rp, gf_dressler *dp)
 static void write_profile(const gf1d_case *cs, const gf_sh1d *s, int k, const double *h, const double *u,
                           const gf_riemann *rp, gf_dressler *dp)
 {
-    char path[1024];
     const size_t n = gf_sh1d_n_cells(s);
     const char *dir = cs->dir, *name = cs->name;
     const double *times = cs->times;
     const int exact = cs->exact;
     gf_topography *topo = cs->topo;
-    mkpath(path, sizeof path, "%s/%s_t%g.csv", dir, name, times[k]);
+    char *path = mkpath("%s/%s_t%g.csv", dir, name, times[k]);
         FILE *f = fopen(path, "w");
         if (!f)
             die("cannot write '%s': %s", path, strerror(errno));
@@ -686,7 +725,9 @@ static void write_profile(const gf1d_case *cs, const gf_sh1d *s, int k, const do
             }
             fprintf(f, "\n");
         }
-        fclose(f);
+        if (fclose(f) != 0)
+            die("cannot write '%s': %s", path, strerror(errno));
+        free(path);
 }
 
 /* Run to every output time: a summary line (stdout and NAME.summary) and
@@ -696,8 +737,7 @@ static void run_case(const gf1d_case *cs, gf_sh1d *s, const gf_riemann *rp, gf_d
     const char *dir = cs->dir, *name = cs->name;
     const double *times = cs->times, front_h = cs->front_h, every = cs->every;
     const int nt = cs->nt;
-    char path[1024];
-    mkpath(path, sizeof path, "%s/%s.summary", dir, name);
+    char *path = mkpath("%s/%s.summary", dir, name);
     FILE *sum = fopen(path, "w");
     if (!sum)
         die("cannot write '%s': %s", path, strerror(errno));
@@ -745,7 +785,9 @@ static void run_case(const gf1d_case *cs, gf_sh1d *s, const gf_riemann *rp, gf_d
 
         write_profile(cs, s, k, h, u, rp, dp);
     }
-    fclose(sum);
+    if (fclose(sum) != 0)
+        die("cannot write '%s': %s", path, strerror(errno));
+    free(path);
     if (gf_sh1d_startup_steps(s) > 0)
         printf("start-up refinement (startup_levels = %d): %zu steps on the finer grids up to t = %g "
                "(counted as 1 step above)\n",
@@ -755,47 +797,93 @@ static void run_case(const gf1d_case *cs, gf_sh1d *s, const gf_riemann *rp, gf_d
     free(u);
 }
 
-/* NAME.gp and NAME.png: h and u at every output time (and the bed). */
+/* s as a gnuplot string in single quotes (a quote in it doubled) */
+static void gp_string(FILE *g, const char *s)
+{
+    fputc('\'', g);
+    for (; *s; ++s) {
+        if (*s == '\'')
+            fputc('\'', g);
+        fputc(*s, g);
+    }
+    fputc('\'', g);
+}
+
+/* NAME.gp and NAME.png: h and u at every output time (and the bed).  The
+ * script names its files relative to the output folder, and gnuplot runs
+ * there (no shell, no path in a command line): an output folder of any
+ * length and name. */
 static void write_plot(const gf1d_case *cs)
 {
     const char *dir = cs->dir, *name = cs->name;
     const double *times = cs->times;
     const int nt = cs->nt, exact = cs->exact;
     const gf_topography *topo = cs->topo;
-    char path[1024];
-        mkpath(path, sizeof path, "%s/%s.gp", dir, name);
+    char *path = mkpath("%s/%s.gp", dir, name), *gp = mkpath("%s.gp", name);
         FILE *g = fopen(path, "w");
         if (!g)
-            die("cannot write '%s'", path);
+            die("cannot write '%s': %s", path, strerror(errno));
         fprintf(g, "set datafile separator ','\nset terminal pngcairo size 900,%d font ',10'\n",
                 topo ? 900 : 600);
-        fprintf(g, "set output '%s/%s.png'\nset multiplot layout %d,1 title '%s'\n", dir, name,
-                topo ? 3 : 2, name);
-        fprintf(g, "set key outside right\nset grid\nset xlabel 'x'\n");
+        char *png = mkpath("%s.png", name);
+        fprintf(g, "set output ");
+        gp_string(g, png);
+        fprintf(g, "\nset multiplot layout %d,1 title ", topo ? 3 : 2);
+        gp_string(g, name);
+        fprintf(g, "\nset key outside right\nset grid\nset xlabel 'x'\n");
         for (int panel = 0; panel < 2; ++panel) {
             fprintf(g, "set ylabel '%s'\nplot ", panel ? "u" : "h");
             for (int k = 0; k < nt; ++k) {
-                fprintf(g, "%s'%s/%s_t%g.csv' skip 1 using 1:%d with lines lw 2 title 't = %g'", k ? ", " : "",
-                        dir, name, times[k], panel ? 3 : 2, times[k]);
-                if (exact)
-                    fprintf(g, ", '%s/%s_t%g.csv' skip 1 using 1:%d with lines dt 2 lc rgb 'black' "
-                               "title 'exact t = %g'", dir, name, times[k], panel ? (topo ? 9 : 5) : (topo ? 8 : 4),
-                            times[k]);
+                char *csv = mkpath("%s_t%g.csv", name, times[k]);
+                fprintf(g, "%s", k ? ", " : "");
+                gp_string(g, csv);
+                fprintf(g, " skip 1 using 1:%d with lines lw 2 title 't = %g'", panel ? 3 : 2, times[k]);
+                if (exact) {
+                    fprintf(g, ", ");
+                    gp_string(g, csv);
+                    fprintf(g, " skip 1 using 1:%d with lines dt 2 lc rgb 'black' title 'exact t = %g'",
+                            panel ? (topo ? 9 : 5) : (topo ? 8 : 4), times[k]);
+                }
+                free(csv);
             }
             fprintf(g, "\n");
         }
         if (topo) {
-            fprintf(g, "set ylabel 'Z (vertical)'\nset xlabel 'X (horizontal)'\nset size ratio -1\n"
-                       "plot '%s/%s_t%g.csv' skip 1 using 4:5 with lines lc rgb 'black' lw 2 title 'bed', "
+            char *csv = mkpath("%s_t%g.csv", name, times[nt - 1]);
+            fprintf(g, "set ylabel 'Z (vertical)'\nset xlabel 'X (horizontal)'\nset size ratio -1\nplot ");
+            gp_string(g, csv);
+            fprintf(g, " skip 1 using 4:5 with lines lc rgb 'black' lw 2 title 'bed', "
                        "'' skip 1 using 6:7 with lines lw 2 title 'surface t = %g'\n",
-                    dir, name, times[nt - 1], times[nt - 1]);
+                    times[nt - 1]);
+            free(csv);
         }
         fprintf(g, "unset multiplot\n");
-        fclose(g);
-        char cmd[1200];
-        mkpath(cmd, sizeof cmd, "gnuplot '%s/%s.gp'", dir, name);
-        if (system(cmd) != 0)
-            fprintf(stderr, "granflow1d: warning: gnuplot failed on %s/%s.gp\n", dir, name);
+        if (fclose(g) != 0)
+            die("cannot write '%s': %s", path, strerror(errno));
+        /* gnuplot NAME.gp in the output folder */
+        fflush(NULL);
+        const pid_t pid = fork();
+        if (pid == 0) {
+            if (chdir(dir) != 0) {
+                fprintf(stderr, "granflow1d: cannot enter the output folder '%s' for gnuplot: %s\n", dir,
+                        strerror(errno));
+                _exit(126);
+            }
+            execlp("gnuplot", "gnuplot", gp, (char *)NULL);
+            fprintf(stderr, "granflow1d: cannot run gnuplot: %s\n", strerror(errno));
+            _exit(127);
+        }
+        int ws = 0;
+        if (pid < 0)
+            fprintf(stderr, "granflow1d: cannot start gnuplot: %s\n", strerror(errno));
+        else
+            while (waitpid(pid, &ws, 0) < 0 && errno == EINTR) {
+            }
+        if (pid < 0 || !WIFEXITED(ws) || WEXITSTATUS(ws) != 0)
+            fprintf(stderr, "granflow1d: warning: gnuplot failed on %s (no %s/%s.png)\n", path, dir, name);
+        free(png);
+        free(gp);
+        free(path);
 }
 
 int main(int argc, char **argv)
