@@ -27,6 +27,8 @@
  *                        line whose level is a multiple of EVERY: "x y angle
  *                        level" at the line's middle point, the angle along
  *                        the line turned upright (for text -F+a)
+ *   gflink TARGET NAME   the symbolic link NAME to TARGET (a script's long
+ *                        paths under short names, without an ln process each)
  *   gfifdata FILE CALL...   CALL when FILE exists and is not empty
  *   gftry CALL...        CALL, its failure reported but not stopping the batch
  *   gfsync               prints "gfsync" on standard output once every call
@@ -417,6 +419,15 @@ static int convert_figures(int n, char** names, const char* dpiText, const char*
     fprintf(ps, "%%!PS\n%% gfGmtBatch gfconvert\n/gfmargin %.6f def /gfdpi %.6f def /gfbbres 1200 def\n", margin, dpi);
     /* a file run as an included EPS is (Adobe Technical Note 5002, section
        "Including an EPS file": state saved, the stacks cleaned after) */
+    /* an image in the bounding-box pass: its data read through (inline
+       data, currentfile), then its rectangle filled (the unit square of
+       its user space): the same box as the image drawn, without rendering
+       its pixels at the pass's resolution (GMT's images lie in the map's
+       frame or the colour bar: avaKot's four boxes the same to the bit) */
+    fputs("/gfimagebox { dup type /dicttype eq {\n"
+          "    /DataSource get dup type /filetype eq { { dup 65536 string readstring exch pop not { exit } if } loop } if pop\n"
+          "  } { pop pop pop pop pop } ifelse gsave 0 0 1 1 rectfill grestore } bind def\n",
+          ps);
     fputs("/gfrun { /gfs save def /gfd countdictstack def /gfo count 2 sub def userdict begin run\n"
           "  count gfo sub {pop} repeat countdictstack gfd sub {end} repeat gfs restore } bind def\n"
           "/gfpdf currentdevice def\n"
@@ -424,7 +435,8 @@ static int convert_figures(int n, char** names, const char* dpiText, const char*
              dpi (psconvert's is ghostscript's 4000 dpi default; 1200 dpi is
              within 0.06 pt of it and three times faster on GMT's images) */
           "/gfbox { mark /HWResolution [gfbbres gfbbres] (bbox) finddevice copydevice putdeviceprops setdevice\n"
-          "  /showpage {} def gfrun /showpage systemdict /showpage get def\n"
+          "  /showpage {} def /image /gfimagebox load def gfrun /showpage systemdict /showpage get def\n"
+          "  userdict /image undef\n"
           "  currentdevice getdeviceprops >> /PageBoundingBox get { 72 mul gfbbres div } forall\n"
           "  gfmargin add 4 1 roll gfmargin add 4 1 roll gfmargin sub 4 1 roll gfmargin sub 4 1 roll\n"
           "  4 array astore } bind def\n"
@@ -550,6 +562,17 @@ static int call(void* api, int n, char** args, const char* file, long nline)
         }
         return args[0][2] == 'v' ? vector_to_gmt(args[1], args[2]) : crs_name(args[1], args[2]);
     }
+    if (strcmp(args[0], "gflink") == 0) {
+        if (n != 3) {
+            fprintf(stderr, "gfGmtBatch: %s line %ld: gflink TARGET NAME\n", file, nline);
+            return 1;
+        }
+        if (symlink(args[1], args[2]) != 0) {
+            fprintf(stderr, "gfGmtBatch: gflink: cannot link %s as %s: %s\n", args[1], args[2], strerror(errno));
+            return 1;
+        }
+        return 0;
+    }
     if (strcmp(args[0], "gfcontours") == 0) {
         if (n < 5) {
             fprintf(stderr, "gfGmtBatch: %s line %ld: gfcontours EVERY OUT LABELS IN...\n", file, nline);
@@ -604,12 +627,16 @@ int main(int argc, char** argv)
         return argc == 2 ? 0 : 2;
     }
     /* GMT's modules allocate (calloc) and free 32 MB of temporary columns
-       each (gmt_memory.c, GMT_INITIAL_MEM_ROW_ALLOC), and copy their
-       2 MB state: with glibc's dynamic mmap threshold every module then
-       faults those pages in again (mallopt(3)).  A fixed high threshold and
-       no trimming keep the heap's pages: avaKot's four maps 1.05 -> 0.65 s
-       of CPU, 48,000 -> 18,500 page faults */
-    mallopt(M_MMAP_THRESHOLD, 256 * 1024 * 1024);
+       each (gmt_memory.c, GMT_INITIAL_MEM_ROW_ALLOC: 16 MB a column), and
+       copy their 2 MB state: with glibc's dynamic mmap threshold every
+       module then faults the state's pages in again (mallopt(3)).  A fixed
+       threshold between the two (4 MB) and no trimming keep the state's
+       pages in the heap, while the columns are mapped fresh: zero pages
+       that calloc need not clear, and only the rows a module touches are
+       faulted in (from the heap, each calloc cleared all 32 MB: over a
+       gigabyte of memset for a report's 36 plot calls): avaKot's four maps
+       31,600 -> 24,800 page faults */
+    mallopt(M_MMAP_THRESHOLD, 4 * 1024 * 1024);
     mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
     FILE* in = strcmp(argv[1], "-") == 0 ? stdin : fopen(argv[1], "r");
     if (!in) {
