@@ -512,29 +512,42 @@ gf_status gf_dam_burn(gf_raster *dem, size_t n, const double *xyz, double slope,
 
 /*----------------------------------------------------- checks of inputs --*/
 
+/* A vector file opened with its first layer (the layer the readers above
+ * take); NULL with *st set when it cannot be opened or has no layer. */
+static GDALDatasetH open_first_layer(const char *path, OGRLayerH *L, gf_status *st)
+{
+    gf_terrain_gdal_init();
+    GDALDatasetH ds = gf_terrain_open_vector("vector file", path, st);
+    if (!ds)
+        return NULL;
+    *L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
+    if (!*L) {
+        *st = gf_fail(GF_EDOM, "vector file %s: no layer", path);
+        GDALClose(ds);
+        return NULL;
+    }
+    *st = GF_SUCCESS;
+    return ds;
+}
+
 gf_status gf_vector_crs(const char *path, char **wkt)
 {
     if (!path || !wkt)
         return gf_fail(GF_EINVAL, "gf_vector_crs: null argument");
     *wkt = NULL;
-    gf_terrain_gdal_init();
     gf_status st;
-    GDALDatasetH ds = gf_terrain_open_vector("vector file", path, &st);
+    OGRLayerH L;
+    GDALDatasetH ds = open_first_layer(path, &L, &st);
     if (!ds)
         return st;
-    OGRLayerH L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
-    if (!L)
-        st = gf_fail(GF_EDOM, "vector file %s: no layer", path);
-    else {
-        OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(L);
-        char *w = NULL;
-        if (srs)
-            OSRExportToWkt(srs, &w);
-        *wkt = gf_terrain_dup_str(w);
-        CPLFree(w);
-        if (!*wkt)
-            st = gf_fail(GF_ENOMEM, "vector file %s: out of memory", path);
-    }
+    OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(L);
+    char *w = NULL;
+    if (srs)
+        OSRExportToWkt(srs, &w);
+    *wkt = gf_terrain_dup_str(w);
+    CPLFree(w);
+    if (!*wkt)
+        st = gf_fail(GF_ENOMEM, "vector file %s: out of memory", path);
     GDALClose(ds);
     return st;
 }
@@ -543,14 +556,12 @@ gf_status gf_vector_field_numeric(const char *path, const char *field, const cha
 {
     if (!path || !field)
         return gf_fail(GF_EINVAL, "gf_vector_field_numeric: null argument");
-    gf_terrain_gdal_init();
     gf_status st;
-    GDALDatasetH ds = gf_terrain_open_vector("vector file", path, &st);
+    OGRLayerH L;
+    GDALDatasetH ds = open_first_layer(path, &L, &st);
     if (!ds)
         return st;
-    OGRLayerH L = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
-    st = L ? numeric_field(OGR_L_GetLayerDefn(L), path, field, need)
-           : gf_fail(GF_EDOM, "vector file %s: no layer", path);
+    st = numeric_field(OGR_L_GetLayerDefn(L), path, field, need);
     GDALClose(ds);
     return st;
 }
