@@ -57,7 +57,9 @@ Usage
     (Markdown, doc/keywords.md) and -version the granflow version.
     -members FILE runs the case folders listed in FILE back to back on this
     case's meshes, loaded once (an ensemble worker of gfRunEnsemble;
-    memberRuns.H).
+    memberRuns.H); -members - reads them from standard input as they come
+    and answers each with a line "member FOLDER: ok" (or FAILED: why) on
+    standard output (gfCalibrate's workers).
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
@@ -99,7 +101,7 @@ int main(int argc, char *argv[])
         " with libgranflow physics"
     );
     granflow::keyword::addOptions();   // -keywords (the keyword reference), -version
-    granflow::memberRuns::addOptions(); // -members FILE (memberRuns.H)
+    granflow::memberRuns::addOptions(); // -members FILE|- (memberRuns.H)
     if (granflow::keyword::earlyOptions(argc, argv))
     {
         return 0;

@@ -533,6 +533,9 @@ std::vector<table> makeTables()
              " system/entrainmentDict) or resistance (resistance factor [-], e.g."
              " system/resistanceDict); gfSetRelease -dict <name> reads another dictionary"},
             {"default", "scalar", "required", ">= 0", "m", "", "the field outside every region"},
+            {"factor", "scalar", "1", "[0, 100]", "", "",
+             "every value of the field multiplied by it, after the regions (a back-calculation's"
+             " release thickness: gfCalibrate's release parameter)"},
             {"Us", "vector", "-", "", "m/s", "",
              "initial velocity everywhere, made tangential (written to Us)"},
             {"regions", "list", "required", "", "", "",

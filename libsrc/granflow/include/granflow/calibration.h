@@ -328,6 +328,78 @@ gf_status gf_reach_verdict(size_t n, const double *loss, const double *jaccard,
                            const double *runout_error, const gf_reach_criteria *c,
                            gf_reach_result *res);
 
+
+/* ------------------------------------------------------------------ */
+/* The calibration's runs (theory section 5)                           */
+/* ------------------------------------------------------------------ */
+
+/** What one evaluation (an ensemble member) gave. */
+typedef struct gf_calib_eval {
+    int ok;            /**< 1: the member ran and was scored; 0: it failed */
+    double loss;       /**< gf_loss of its scores (NAN when it failed) */
+    gf_scores scores;  /**< runout error, Tversky, RMSE, series RMSE (NAN: not observed) */
+    double jaccard;    /**< the outline's Jaccard index (NAN: no outline observed) */
+} gf_calib_eval;
+
+/** The evaluation of parameter set `index` at u [d] (unit coordinates),
+ *  written to *out.  Called from several threads at once (plan.threads):
+ *  it must be thread-safe.  The index is deterministic (the same plan gives
+ *  the same index to the same point), so that a driver can keep the results
+ *  of a stopped calibration and return them again instead of running the
+ *  member twice.  A member that failed is out->ok = 0 with GF_SUCCESS; a
+ *  status other than GF_SUCCESS stops the calibration. */
+typedef gf_status (*gf_calib_evaluate)(size_t index, const double *u, size_t d, void *ctx,
+                                       gf_calib_eval *out);
+
+/** The plan: a space-filling design, Morris trajectories on top of it (the
+ *  sensitivities), then simplex refinements from the best design points. */
+typedef struct gf_calib_plan {
+    size_t d;            /**< parameters (1 .. GF_SOBOL_MAX_DIM) */
+    size_t n_sobol;      /**< Sobol design points (>= 1) */
+    size_t morris_r;     /**< Morris trajectories (0: none; else >= 2) */
+    size_t morris_p;     /**< Morris grid levels (even >= 2) */
+    uint64_t seed;       /**< Morris's random numbers */
+    size_t n_starts;     /**< refinements (0: none), from the n_starts best design points */
+    size_t refine_evals; /**< evaluations per refinement (>= d + 1) */
+    double step, tol;    /**< the simplex's initial step and size tolerance (unit coordinates) */
+    double failed_loss;  /**< the loss a failed member counts in a refinement (> 0, finite) */
+    size_t threads;      /**< evaluations at once (>= 1; one per worker) */
+} gf_calib_plan;
+
+/** Where an evaluation comes from. */
+typedef enum gf_calib_phase { GF_PHASE_SOBOL = 0, GF_PHASE_MORRIS = 1, GF_PHASE_REFINE = 2 } gf_calib_phase;
+
+/** Every evaluation of a calibration, by index. */
+typedef struct gf_calib_run {
+    size_t d, n;         /**< parameters; evaluations (index 0 .. n - 1) */
+    double *u;           /**< [n d] unit coordinates */
+    gf_calib_eval *ev;   /**< [n] */
+    int *phase;          /**< [n] gf_calib_phase */
+    int *start;          /**< [n] the refinement an evaluation belongs to (-1: the design) */
+    size_t n_sobol, n_morris; /**< the design's parts: indices [0, n_sobol), then n_morris */
+    int *converged;      /**< [n_starts] each refinement: 1 converged, 0 budget spent */
+    size_t n_starts;
+} gf_calib_run;
+
+/** Index of evaluation j of refinement k: n_sobol + n_morris + k refine_evals + j. */
+size_t gf_calib_refine_index(const gf_calib_plan *plan, size_t k, size_t j);
+
+/** Run a calibration: the design's points (Sobol, then Morris trajectories,
+ *  plan.threads at a time), then plan.n_starts simplex refinements
+ *  (gf_refine_simplex) from the best successful design points (those
+ *  farther than 2 tol from a start already taken, so that they explore
+ *  different places), each refinement in its own thread, plan.threads at a
+ *  time.  Indices are deterministic (gf_calib_refine_index); a refinement
+ *  that stops before its budget leaves its remaining indices unused (ok =
+ *  0, loss NAN, phase GF_PHASE_REFINE, start k).  The arrays are allocated
+ *  here; gf_calib_run_free frees them.  Refused: a NULL argument, a plan
+ *  outside the ranges above (GF_EINVAL, GF_EDOM); the first evaluation that
+ *  returns an error stops every thread and is returned (the evaluations made
+ *  are in run); no successful design point to start a refinement from
+ *  (GF_EDOM: every member failed). */
+gf_status gf_calibrate_run(const gf_calib_plan *plan, gf_calib_evaluate f, void *ctx, gf_calib_run *run);
+void gf_calib_run_free(gf_calib_run *run);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,1286 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * gfCalibrate — back-calculate an observed event: the parameters (friction
+ * coefficients, the release thickness, any dictionary entry) whose runs
+ * reproduce an observed outline, runout and deposit, with what the
+ * observation does and does not constrain (doc/theory/calibration.md,
+ * doc/guide/back-calculation.md).
+ *
+ *   gfCalibrate [-np N] [-dict FILE] [-out DIR] CASE
+ *   gfCalibrate -observe RUN OUTDIR [-threshold KPA] [-shift CELLS] [-runoutShift M]
+ *   gfCalibrate -version | -help
+ *
+ * CASE is a terrain case that has been meshed and released (a tutorial's
+ * run folder).  FILE (default CASE/system/calibrationDict) names the
+ * parameters and their ranges, the observations and the scores' weights;
+ * every key is checked (an unknown one is refused).  The calibration runs
+ * libgranflow's gf_calibrate_run: a Sobol design and Morris trajectories,
+ * then simplex refinements from the best points, every evaluation a member
+ * folder DIR/evals/eval_NNNN run by N ensemble workers (faGranularFlowFoam
+ * -members -: the meshes loaded once per worker, granflow/workers.h).  A
+ * calibration that stops (killed, a machine down) resumes: run the same
+ * command again; every evaluation whose result is in its folder is read,
+ * not run again.  Output in DIR (default CASE-calibration):
+ *   evaluations.csv  every evaluation: its parameters, status, loss, scores, folder
+ *   summary.txt      the verdict, the best set, the credible ranges, the
+ *                    ridge, the sensitivities, the evaluations per minute
+ *   parameters.csv   per parameter: best, credible range, design range
+ *   best/            the best evaluation's case (its results, ready to run again)
+ *   loss_A_B.png     the loss over each pair of parameters with the ridge
+ *   bestOutline.tif  the best run against the observation per pixel:
+ *                    1 both affected, 2 simulated only, 3 observed only
+ * The exit status is 0 when the observation is reached, 3 when no
+ * evaluation reproduces it (unreachable: reported, never a silent best
+ * guess), 1 or 2 on errors.
+ *
+ * -observe makes the observations of a run (a twin experiment, or a
+ * documented event re-made from a run): RUN's peak pressure above the
+ * threshold (default 1 kPa) as an outline shapefile (outline.shp, the DEM's
+ * CRS), the runout point (runout.shp: pathAnalysis's xRunout, yRunout) and
+ * the deposit (deposit.tif: the thickness at the run's end); -shift moves
+ * the outline by CELLS pixels east, -runoutShift moves the runout point by
+ * M metres along the path (noise on the observation).
+ */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/time.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <gdal.h>
+#include <gdal_alg.h>
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include "gf_dict.h"
+#include "granflow/calibration.h"
+#include "granflow/path_analysis.h"
+#include "granflow/terrain.h"
+#include "granflow/version.h"
+#include "granflow/workers.h"
+
+#define MAXP 16
+
+static const char *prog = "gfCalibrate";
+
+static void die(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "%s: ", prog);
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\n");
+    va_end(ap);
+    exit(1);
+}
+
+static char *cat(const char *a, const char *b)
+{
+    char *r = NULL;
+    if (asprintf(&r, "%s/%s", a, b) < 0) die("out of memory");
+    return r;
+}
+
+/* a program, its output to log (NULL: inherited); its exit status */
+static int run_prog(char *const argv[], const char *log)
+{
+    fflush(stdout);
+    const pid_t pid = fork();
+    if (pid < 0) die("fork: %s", strerror(errno));
+    if (pid == 0) {
+        if (log) {
+            const int fd = open(log, O_WRONLY | O_CREAT | O_APPEND, 0644);
+            if (fd >= 0) {
+                dup2(fd, 1);
+                dup2(fd, 2);
+            }
+        }
+        execvp(argv[0], argv);
+        fprintf(stderr, "cannot run %s: %s\n", argv[0], strerror(errno));
+        _exit(127);
+    }
+    int st = 0;
+    while (waitpid(pid, &st, 0) < 0 && errno == EINTR) {
+    }
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+static int exists(const char *p)
+{
+    struct stat s;
+    return stat(p, &s) == 0;
+}
+
+static double now(void)
+{
+    struct timeval t;
+    gettimeofday(&t, NULL);
+    return (double)t.tv_sec + 1e-6 * (double)t.tv_usec;
+}
+
+/*---------------------------------------------------------------- the dictionary --*/
+
+typedef struct param {
+    char name[64];
+    int release;         /* 1: the release thickness factor (releaseDict factor) */
+    char file[512];      /* the dictionary, relative to the case */
+    char entry[512];     /* a/b/c */
+    double lo, hi;
+} param;
+
+typedef struct config {
+    const char *path;
+    param p[MAXP];
+    size_t d;
+    char *outline, *runout_point, *deposit;
+    double runout_s;     /* NAN: not given as a number */
+    double threshold, alpha, beta, deposit_threshold;
+    gf_loss_weights w;
+    gf_calib_plan plan;
+    double runout_tol, min_jaccard;
+} config;
+
+static void bad(const config *c, const gf_dict_entry *e, const char *key, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "%s: %s", prog, c->path);
+    if (e) fprintf(stderr, ":%d", e->line);
+    fprintf(stderr, ": %s: ", key);
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\n");
+    va_end(ap);
+    exit(1);
+}
+
+/* a number key of d (default def when absent, NAN def: required) in [lo, hi] */
+static double num(const config *c, const gf_dict *d, const char *key, double def, double lo, double hi)
+{
+    char full[256];
+    snprintf(full, sizeof full, "%s%s%s", d->name, *d->name ? "/" : "", key);
+    const gf_dict_entry *e = gf_dict_find(d, key);
+    if (!e) {
+        if (isnan(def)) bad(c, NULL, full, "required (a number in [%g, %g])", lo, hi);
+        return def;
+    }
+    double v;
+    if (e->sub || e->ntok != 1 || !gf_parse_number(e->tok[0], &v))
+        bad(c, e, full, "expected one number in [%g, %g]", lo, hi);
+    if (!(v >= lo && v <= hi)) bad(c, e, full, "%g is outside the allowed range [%g, %g]", v, lo, hi);
+    return v;
+}
+
+static size_t whole(const config *c, const gf_dict *d, const char *key, double def, double lo, double hi)
+{
+    const double v = num(c, d, key, def, lo, hi);
+    if (v != floor(v)) {
+        char full[256];
+        snprintf(full, sizeof full, "%s/%s", d->name, key);
+        bad(c, gf_dict_find(d, key), full, "%g is not a whole number", v);
+    }
+    return (size_t)v;
+}
+
+static const char *word(const config *c, const gf_dict *d, const char *key)
+{
+    const gf_dict_entry *e = gf_dict_find(d, key);
+    if (!e) return NULL;
+    if (e->sub || e->ntok != 1) bad(c, e, key, "expected one word or \"file name\"");
+    return e->tok[0];
+}
+
+static const gf_dict *sub(const config *c, const gf_dict *d, const char *key, int required)
+{
+    const gf_dict_entry *e = gf_dict_find(d, key);
+    if (!e) {
+        if (required) bad(c, NULL, key, "required: a dictionary { ... }");
+        return NULL;
+    }
+    if (!e->sub) bad(c, e, key, "expected a dictionary { ... }");
+    return e->sub;
+}
+
+static void read_config(const char *path, config *c)
+{
+    char err[2048];
+    memset(c, 0, sizeof *c);
+    c->path = path;
+    gf_dict *D = gf_dict_read(path, err, sizeof err);
+    if (!D) die("%s", err);
+
+    const gf_dict *P = sub(c, D, "parameters", 1);
+    for (size_t k = 0; k < P->n; ++k) {
+        gf_dict_entry *e = &P->e[k];
+        e->used = 1;
+        if (!e->sub) bad(c, e, e->key, "a parameter is a dictionary { file F; entry E; range (lo hi); } or "
+                                       "{ release factor; range (lo hi); }");
+        if (c->d == MAXP) bad(c, e, e->key, "more than %d parameters", MAXP);
+        param *p = &c->p[c->d++];
+        snprintf(p->name, sizeof p->name, "%s", e->key);
+        const gf_dict *s = e->sub;
+        const char *rel = word(c, s, "release");
+        if (rel) {
+            if (strcmp(rel, "factor") != 0) bad(c, gf_dict_find(s, "release"), "release", "'%s': allowed: factor", rel);
+            p->release = 1;
+        } else {
+            const char *f = word(c, s, "file"), *en = word(c, s, "entry");
+            if (!f || !en)
+                bad(c, e, e->key, "needs file (a dictionary of the case, e.g. constant/granularProperties) and "
+                                  "entry (e.g. samosATCoeffs/mu), or release factor");
+            if (f[0] == '/' || strstr(f, "..")) bad(c, gf_dict_find(s, "file"), "file", "'%s': a path inside the case", f);
+            if (strcmp(f, "system/controlDict") == 0)
+                bad(c, gf_dict_find(s, "file"), "file", "the run's controls are not calibrated");
+            snprintf(p->file, sizeof p->file, "%s", f);
+            snprintf(p->entry, sizeof p->entry, "%s", en);
+        }
+        const gf_dict_entry *r = gf_dict_find(s, "range");
+        if (!r || r->sub || r->ntok != 4 || strcmp(r->tok[0], "(") || strcmp(r->tok[3], ")") ||
+            !gf_parse_number(r->tok[1], &p->lo) || !gf_parse_number(r->tok[2], &p->hi) || !(p->hi > p->lo) ||
+            !isfinite(p->lo) || !isfinite(p->hi))
+            bad(c, r ? r : e, e->key, "range: expected (lo hi) with lo < hi, finite");
+        if (p->release && !(p->lo >= 0 && p->hi <= 100))
+            bad(c, r, e->key, "a release factor's range lies in [0, 100]");
+    }
+    if (c->d == 0) bad(c, NULL, "parameters", "no parameter to calibrate");
+
+    const gf_dict *O = sub(c, D, "observations", 1);
+    const char *w;
+    c->runout_s = NAN;
+    if ((w = word(c, O, "outline"))) c->outline = strdup(w);
+    if ((w = word(c, O, "runoutPoint"))) c->runout_point = strdup(w);
+    if (gf_dict_find(O, "runout")) c->runout_s = num(c, O, "runout", NAN, 0, 1e6);
+    if ((w = word(c, O, "deposit"))) c->deposit = strdup(w);
+    if (c->runout_point && !isnan(c->runout_s))
+        bad(c, gf_dict_find(O, "runout"), "observations", "give runoutPoint or runout, not both");
+    if (!c->outline && !c->runout_point && isnan(c->runout_s) && !c->deposit)
+        bad(c, NULL, "observations", "none given: outline, runoutPoint or runout, deposit");
+
+    const gf_dict *S = sub(c, D, "scores", 0);
+    gf_dict empty = {path, (char *)"scores", NULL, 0};
+    if (!S) S = &empty;
+    c->threshold = num(c, S, "threshold", 1, 0, 1e6);
+    c->alpha = num(c, S, "tverskyAlpha", 1, 0, 100);
+    c->beta = num(c, S, "tverskyBeta", 1, 0, 100);
+    c->w.runout = num(c, S, "runoutWeight", 1, 0, 1e6);
+    c->w.runout_scale = num(c, S, "runoutScale", 20, 1e-9, 1e6);
+    c->w.outline = num(c, S, "outlineWeight", 1, 0, 1e6);
+    c->w.rmse = num(c, S, "depositWeight", 1, 0, 1e6);
+    c->w.rmse_scale = num(c, S, "depositScale", 0.5, 1e-9, 1e6);
+    c->deposit_threshold = num(c, S, "depositThreshold", 0.01, 0, 1e3);
+    c->w.series = 0;
+    c->w.series_scale = 1;
+
+    const gf_dict *G = sub(c, D, "design", 0);
+    gf_dict emptyG = {path, (char *)"design", NULL, 0};
+    if (!G) G = &emptyG;
+    c->plan.d = c->d;
+    c->plan.n_sobol = whole(c, G, "sobol", 8 * (double)c->d + 8, 1, 1e5);
+    c->plan.morris_r = whole(c, G, "morrisTrajectories", 4, 0, 1e4);
+    if (c->plan.morris_r == 1) bad(c, gf_dict_find(G, "morrisTrajectories"), "design/morrisTrajectories", "0 or >= 2");
+    c->plan.morris_p = whole(c, G, "morrisLevels", 4, 2, 100);
+    if (c->plan.morris_p % 2) bad(c, gf_dict_find(G, "morrisLevels"), "design/morrisLevels", "an even number");
+    c->plan.seed = whole(c, G, "seed", 1, 0, 4e9);
+
+    const gf_dict *R = sub(c, D, "refinement", 0);
+    gf_dict emptyR = {path, (char *)"refinement", NULL, 0};
+    if (!R) R = &emptyR;
+    c->plan.n_starts = whole(c, R, "starts", 2, 0, 100);
+    c->plan.refine_evals = whole(c, R, "evaluations", 10 * (double)c->d + 5, (double)c->d + 1, 1e5);
+    c->plan.step = num(c, R, "step", 0.1, 1e-6, 1);
+    c->plan.tol = num(c, R, "tolerance", 0.01, 1e-9, 1);
+    c->plan.failed_loss = 10;
+
+    const gf_dict *A = sub(c, D, "acceptance", 0);
+    gf_dict emptyA = {path, (char *)"acceptance", NULL, 0};
+    if (!A) A = &emptyA;
+    c->runout_tol = num(c, A, "runoutTolerance", c->w.runout_scale, 0, 1e6);
+    c->min_jaccard = num(c, A, "minJaccard", 0.8, 0, 1);
+
+    const gf_dict *in = NULL;
+    const gf_dict_entry *u = gf_dict_unused(D, &in);
+    if (u)
+        bad(c, u, u->key, "unknown key%s%s (allowed: parameters, observations { outline runoutPoint runout deposit }, "
+                          "scores { threshold tverskyAlpha tverskyBeta runoutWeight runoutScale outlineWeight "
+                          "depositWeight depositScale depositThreshold }, design { sobol morrisTrajectories "
+                          "morrisLevels seed }, refinement { starts evaluations step tolerance }, acceptance { "
+                          "runoutTolerance minJaccard })",
+            in && *in->name ? " in " : "", in && *in->name ? in->name : "");
+    gf_dict_free(D);
+}
+
+/*---------------------------------------------------------------- the observation --*/
+
+typedef struct observation {
+    gf_raster dem;            /* the DEM's grid */
+    unsigned char *mask;      /* observed affected (outline) or NULL */
+    unsigned char *valid;     /* cells counted */
+    double cell_area;
+    double s_runout;          /* NAN: not observed */
+    double *deposit;          /* NULL: not observed */
+    size_t npath;
+    double *path;             /* the case's path (xy) */
+} observation;
+
+/* the value of a one-word entry of a case dictionary (NULL when absent) */
+static char *case_word(const char *file, const char *key)
+{
+    char err[1024];
+    gf_dict *d = gf_dict_read(file, err, sizeof err);
+    if (!d) die("%s", err);
+    gf_dict_entry *e = gf_dict_find(d, key);
+    char *r = e && !e->sub && e->ntok == 1 ? strdup(e->tok[0]) : NULL;
+    gf_dict_free(d);
+    return r;
+}
+
+static void crs_check(const char *what, const char *file, const char *wkt, const observation *o, const char *dem)
+{
+    const int same = gf_crs_same(wkt, o->dem.wkt);
+    if (same == 0) die("observation %s %s: its CRS is not the DEM's (%s): reproject it to the DEM's CRS", what, file, dem);
+    if (same < 0 && *wkt && *o->dem.wkt)
+        die("observation %s %s: its CRS is not understood (GDAL), the DEM's is", what, file);
+}
+
+static void read_observation(const char *casedir, const config *c, observation *o)
+{
+    memset(o, 0, sizeof *o);
+    o->s_runout = NAN;
+    char *td = cat(casedir, "system/terrainDict");
+    char *demrel = case_word(td, "dem");
+    if (!demrel) die("%s: no dem entry: CASE must be a terrain case (gfTerrainMesh)", td);
+    char *dem = cat(casedir, "constant/demWithDam.tif");
+    if (!exists(dem)) {
+        free(dem);
+        dem = demrel[0] == '/' ? strdup(demrel) : cat(casedir, demrel);
+    }
+    if (gf_raster_read(dem, &o->dem)) die("DEM %s: %s", dem, gf_error_detail());
+    const size_t n = (size_t)o->dem.nx * (size_t)o->dem.ny;
+    o->cell_area = fabs(o->dem.gt[1] * o->dem.gt[5]);
+    o->valid = malloc(n);
+    if (!o->valid) die("out of memory");
+    for (size_t i = 0; i < n; ++i) o->valid[i] = !isnan(o->dem.z[i]);
+
+    if (c->outline) {
+        char *f = c->outline[0] == '/' ? strdup(c->outline) : cat(casedir, c->outline);
+        gf_polygons P;
+        if (gf_polygons_read(f, NULL, 1, &P)) die("observations/outline %s: %s", f, gf_error_detail());
+        crs_check("outline", f, P.wkt, o, dem);
+        o->mask = calloc(n, 1);
+        if (!o->mask) die("out of memory");
+        size_t inside = 0;
+        for (int r = 0; r < o->dem.ny; ++r)
+            for (int q = 0; q < o->dem.nx; ++q) {
+                double x, y;
+                gf_raster_centre(&o->dem, q, r, &x, &y);
+                const size_t i = (size_t)r * (size_t)o->dem.nx + (size_t)q;
+                o->mask[i] = gf_polygons_locate(&P, x, y) >= 0;
+                inside += o->mask[i] && o->valid[i];
+            }
+        gf_polygons_free(&P);
+        if (inside == 0) die("observations/outline %s: no pixel centre of the DEM %s lies inside it", f, dem);
+        printf("observed outline %s: %zu pixels, %.0f m2\n", c->outline, inside, (double)inside * o->cell_area);
+        free(f);
+    }
+    if (c->runout_point || !isnan(c->runout_s)) {
+        char *pf = cat(casedir, "Inputs/LINES/path_aimec.shp");
+        if (!exists(pf))
+            die("observations: a runout needs the case's path %s (the runout is measured along it)", pf);
+        if (gf_path_read(pf, &o->npath, &o->path)) die("path %s: %s", pf, gf_error_detail());
+        if (c->runout_point) {
+            char *f = c->runout_point[0] == '/' ? strdup(c->runout_point) : cat(casedir, c->runout_point);
+            char *wkt = NULL;
+            if (gf_vector_crs(f, &wkt)) die("observations/runoutPoint %s: %s", f, gf_error_detail());
+            crs_check("runoutPoint", f, wkt, o, dem);
+            free(wkt);
+            double x, y, l;
+            if (gf_point_read(f, &x, &y)) die("observations/runoutPoint %s: %s", f, gf_error_detail());
+            gf_path_locate(o->npath, o->path, x, y, &o->s_runout, &l);
+            if (fabs(l) > 300)
+                die("observations/runoutPoint %s: (%.1f, %.1f) lies %.0f m from the path %s (at most 300 m: the "
+                    "path analysis's half width)",
+                    f, x, y, fabs(l), pf);
+            printf("observed runout point %s: s = %.1f m along the path (%.1f m %s of it)\n", c->runout_point,
+                   o->s_runout, fabs(l), l > 0 ? "left" : "right");
+            free(f);
+        } else {
+            o->s_runout = c->runout_s;
+            printf("observed runout: s = %.1f m along the path\n", o->s_runout);
+        }
+        free(pf);
+    }
+    if (c->deposit) {
+        char *f = c->deposit[0] == '/' ? strdup(c->deposit) : cat(casedir, c->deposit);
+        gf_raster r;
+        if (gf_raster_read(f, &r)) die("observations/deposit %s: %s", f, gf_error_detail());
+        crs_check("deposit", f, r.wkt, o, dem);
+        if (!gf_raster_same_grid(&r, &o->dem))
+            die("observations/deposit %s: not on the DEM's grid (%s: %d x %d pixels of %g m): resample it "
+                "(gdalwarp -te/-tr)", f, dem, o->dem.nx, o->dem.ny, o->dem.gt[1]);
+        o->deposit = r.z;
+        r.z = NULL;
+        gf_raster_free(&r);
+        for (size_t i = 0; i < n; ++i)
+            if (isnan(o->deposit[i])) o->valid[i] = 0;
+        free(f);
+    }
+    free(td);
+    free(demrel);
+    free(dem);
+}
+
+/*------------------------------------------------------------------- the members --*/
+
+typedef struct calib {
+    const config *c;
+    const observation *o;
+    const char *casedir;
+    char *dir, *evals, *templ;
+    gf_workers *pool;
+    pthread_mutex_t lock;
+    size_t done, ran, resumed;
+    double t0;
+} calib;
+
+static void member_name(const calib *k, size_t index, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s/eval_%04zu", k->evals, index);
+}
+
+/* append text to a file */
+static int append(const char *file, const char *text)
+{
+    FILE *f = fopen(file, "a");
+    if (!f) return -1;
+    const int r = fputs(text, f) < 0;
+    return fclose(f) != 0 || r ? -1 : 0;
+}
+
+/* "a/b/c" = v as nested dictionaries: a { b { c v; } } */
+static void override_text(const char *entry, double v, char *out, size_t size)
+{
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", entry);
+    size_t depth = 0, len = 0;
+    len += (size_t)snprintf(out + len, size - len, "\n// gfCalibrate\n");
+    char *save = NULL;
+    char *parts[32];
+    for (char *t = strtok_r(buf, "/", &save); t && depth < 32; t = strtok_r(NULL, "/", &save)) parts[depth++] = t;
+    for (size_t i = 0; i + 1 < depth; ++i) len += (size_t)snprintf(out + len, size - len, "%s { ", parts[i]);
+    len += (size_t)snprintf(out + len, size - len, "%s %.17g;", parts[depth - 1], v);
+    for (size_t i = 0; i + 1 < depth; ++i) len += (size_t)snprintf(out + len, size - len, " }");
+    snprintf(out + len, size - len, "\n");
+}
+
+static double value(const param *p, double u) { return p->lo + (p->hi - p->lo) * u; }
+
+/* the first number of a CSV column */
+static double csv_value(const char *file, const char *col)
+{
+    FILE *f = fopen(file, "r");
+    if (!f) return NAN;
+    char *h = NULL, *r = NULL;
+    size_t hc = 0, rc = 0;
+    double v = NAN;
+    if (getline(&h, &hc, f) > 0 && getline(&r, &rc, f) > 0) {
+        int k = -1, i = 0;
+        char *s1 = NULL, *s2 = NULL;
+        for (char *t = strtok_r(h, ",\n", &s1); t; t = strtok_r(NULL, ",\n", &s1), ++i)
+            if (strcmp(t, col) == 0) k = i;
+        i = 0;
+        for (char *t = strtok_r(r, ",\n", &s2); t; t = strtok_r(NULL, ",\n", &s2), ++i)
+            if (i == k && !gf_parse_number(t, &v)) v = NAN;
+    }
+    free(h);
+    free(r);
+    fclose(f);
+    return v;
+}
+
+/* the scores of a member that ran (0), or -1 with the reason */
+static int score(calib *k, const char *m, gf_calib_eval *e, char *why, size_t wsize)
+{
+    const config *c = k->c;
+    const observation *o = k->o;
+    const size_t n = (size_t)o->dem.nx * (size_t)o->dem.ny;
+    e->scores = (gf_scores){NAN, NAN, NAN, NAN};
+    e->jaccard = NAN;
+    char *ppr = cat(m, "postProcessing/hazardMaps/pressurePeak.tif");
+    gf_raster r;
+    if (gf_raster_read(ppr, &r)) {
+        snprintf(why, wsize, "no peak pressure raster (%s)", gf_error_detail());
+        free(ppr);
+        return -1;
+    }
+    free(ppr);
+    if (!gf_raster_same_grid(&r, &o->dem)) {
+        gf_raster_free(&r);
+        snprintf(why, wsize, "its peak pressure raster is not on the DEM's grid");
+        return -1;
+    }
+    if (o->mask) {
+        gf_outline_score s;
+        if (gf_score_outline(n, r.z, c->threshold, o->mask, o->valid, o->cell_area, c->alpha, c->beta, &s)) {
+            snprintf(why, wsize, "outline score: %s", gf_error_detail());
+            gf_raster_free(&r);
+            return -1;
+        }
+        e->scores.tversky = s.tversky;
+        e->jaccard = s.tp + s.fp + s.fn > 0 ? s.tp / (s.tp + s.fp + s.fn) : 0;
+    }
+    gf_raster_free(&r);
+    if (!isnan(o->s_runout)) {
+        char *pa = cat(m, "postProcessing/pathAnalysis/pathAnalysis.csv");
+        double s = exists(pa) ? csv_value(pa, "sRunout") : NAN;
+        if (!exists(pa)) s = 0; /* the path analysis found no cross-section above its
+                                 * threshold: the run reaches nothing along the path */
+        free(pa);
+        if (isnan(s)) {
+            snprintf(why, wsize, "no sRunout in postProcessing/pathAnalysis/pathAnalysis.csv");
+            return -1;
+        }
+        gf_score_runout(s, o->s_runout, &e->scores.runout_error);
+    }
+    if (o->deposit) {
+        char *th = cat(m, "postProcessing/hazardMaps/thickness.tif");
+        gf_raster t;
+        if (gf_raster_read(th, &t)) {
+            snprintf(why, wsize, "no thickness raster (%s)", gf_error_detail());
+            free(th);
+            return -1;
+        }
+        free(th);
+        double rmse = NAN;
+        if (gf_score_deposit_rmse(n, t.z, o->deposit, o->valid, c->deposit_threshold, GF_RMSE_UNION, &rmse, NULL)) {
+            snprintf(why, wsize, "deposit score: %s", gf_error_detail());
+            gf_raster_free(&t);
+            return -1;
+        }
+        gf_raster_free(&t);
+        e->scores.rmse = rmse;
+    }
+    if (gf_loss(&e->scores, &c->w, &e->loss)) {
+        snprintf(why, wsize, "loss: %s", gf_error_detail());
+        return -1;
+    }
+    e->ok = 1;
+    return 0;
+}
+
+/* the result file of a member: "u_1 .. u_d ok loss runout tversky rmse jaccard" */
+static int read_result(const char *m, const double *u, size_t d, gf_calib_eval *e)
+{
+    char *f = cat(m, "result");
+    FILE *in = fopen(f, "r");
+    free(f);
+    if (!in) return 0;
+    double v[MAXP + 6];
+    int ok = 1;
+    for (size_t j = 0; j < d + 6 && ok; ++j) {
+        char t[64];
+        ok = fscanf(in, "%63s", t) == 1 && (gf_parse_number(t, &v[j]) || (strcmp(t, "nan") == 0 && (v[j] = NAN, 1)));
+    }
+    fclose(in);
+    if (!ok) return 0;
+    for (size_t j = 0; j < d; ++j)
+        if (fabs(v[j] - u[j]) > 1e-12) return 0; /* another point: run it */
+    e->ok = v[d] == 1;
+    e->loss = v[d + 1];
+    e->scores = (gf_scores){v[d + 2], v[d + 3], v[d + 4], NAN};
+    e->jaccard = v[d + 5];
+    return 1;
+}
+
+static void write_result(const char *m, const double *u, size_t d, const gf_calib_eval *e)
+{
+    char *f = cat(m, "result");
+    FILE *out = fopen(f, "w");
+    if (!out) die("%s: cannot write", f);
+    for (size_t j = 0; j < d; ++j) fprintf(out, "%.17g ", u[j]);
+    fprintf(out, "%d %.17g %.17g %.17g %.17g %.17g\n", e->ok, e->loss, e->scores.runout_error, e->scores.tversky,
+            e->scores.rmse, e->jaccard);
+    fclose(out);
+    free(f);
+}
+
+static const char *phase_name(int phase)
+{
+    return phase == GF_PHASE_SOBOL ? "design" : phase == GF_PHASE_MORRIS ? "morris" : "refine";
+}
+
+static size_t n_design(const calib *k)
+{
+    return k->c->plan.n_sobol + (k->c->plan.morris_r ? k->c->plan.morris_r * (k->c->d + 1) : 0);
+}
+
+static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf_calib_eval *e)
+{
+    calib *k = ctx;
+    const config *c = k->c;
+    char m[4096], why[2048] = "";
+    member_name(k, index, m, sizeof m);
+    int resumed = read_result(m, u, d, e);
+    if (!resumed) {
+        /* the member: the template's copy with its parameters */
+        char *rm[] = {"rm", "-rf", m, NULL}, *cp[] = {"cp", "-a", k->templ, m, NULL};
+        if (run_prog(rm, NULL) || run_prog(cp, NULL)) die("cannot make the member folder %s", m);
+        int bad = 0;
+        for (size_t j = 0; j < d && !bad; ++j) {
+            const param *p = &c->p[j];
+            char text[2048], *file;
+            if (p->release) {
+                snprintf(text, sizeof text, "\n// gfCalibrate\nfactor %.17g;\n", value(p, u[j]));
+                file = cat(m, "system/releaseDict");
+            } else {
+                override_text(p->entry, value(p, u[j]), text, sizeof text);
+                file = cat(m, p->file);
+            }
+            if (append(file, text)) {
+                snprintf(why, sizeof why, "cannot write %s", file);
+                bad = 1;
+            }
+            free(file);
+        }
+        int ok = 0;
+        if (!bad && gf_workers_run(k->pool, m, &ok, why, sizeof why)) die("%s", gf_error_detail());
+        *e = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN}, NAN};
+        if (ok && score(k, m, e, why, sizeof why) != 0) e->ok = 0;
+        /* keep the logs, rasters and tables; the fields go */
+        char *t = NULL;
+        if (asprintf(&t, "find '%s' -mindepth 1 -maxdepth 1 -type d -regex '.*/[0-9.e+-]+' ! -name 0 -exec rm -rf {} +",
+                     m) > 0 && !strchr(m, '\'')) {
+            char *sh[] = {"sh", "-c", t, NULL};
+            run_prog(sh, NULL);
+        }
+        free(t);
+        write_result(m, u, d, e);
+        if (!e->ok) {
+            char *f = cat(m, "failure");
+            FILE *out = fopen(f, "w");
+            if (out) {
+                fprintf(out, "%s\n", why);
+                fclose(out);
+            }
+            free(f);
+        }
+    }
+    pthread_mutex_lock(&k->lock);
+    ++k->done;
+    resumed ? ++k->resumed : ++k->ran;
+    printf("eval %4zu %-6s", index, index < n_design(k) ? (index < c->plan.n_sobol ? "design" : "morris") : "refine");
+    for (size_t j = 0; j < d; ++j) printf(" %s %-8.4g", c->p[j].name, value(&c->p[j], u[j]));
+    if (e->ok) {
+        printf(": loss %.4f", e->loss);
+        if (!isnan(e->scores.runout_error)) printf(", runout %+.1f m", e->scores.runout_error);
+        if (!isnan(e->jaccard)) printf(", Jaccard %.3f", e->jaccard);
+        if (!isnan(e->scores.rmse)) printf(", deposit RMSE %.3f m", e->scores.rmse);
+    } else {
+        char *f = cat(m, "failure");
+        FILE *in = fopen(f, "r");
+        char line[512] = "";
+        if (in) {
+            if (!fgets(line, sizeof line, in)) line[0] = '\0';
+            fclose(in);
+        }
+        line[strcspn(line, "\n")] = '\0';
+        printf(": FAILED: %s", line);
+        free(f);
+    }
+    printf("%s\n", resumed ? " (resumed)" : "");
+    fflush(stdout);
+    pthread_mutex_unlock(&k->lock);
+    return GF_SUCCESS;
+}
+
+/* the template: the case's system/, 0/ and constant/ (meshes linked), its
+ * controls set for members */
+static void make_template(calib *k)
+{
+    const config *c = k->c;
+    if (exists(k->templ)) return;
+    char *tmp = NULL;
+    if (asprintf(&tmp, "%s.tmp", k->templ) < 0) die("out of memory");
+    char *rm[] = {"rm", "-rf", tmp, NULL};
+    run_prog(rm, NULL);
+    if (mkdir(tmp, 0755) || mkdir(cat(tmp, "constant"), 0755)) die("cannot write %s", tmp);
+    char *sys = cat(k->casedir, "system"), *zero = cat(k->casedir, "0"), *inp = cat(k->casedir, "Inputs");
+    char *cp[] = {"cp", "-r", sys, zero, tmp, NULL};
+    if (run_prog(cp, NULL)) die("cannot copy %s and %s", sys, zero);
+    if (exists(inp)) {
+        char *abs = realpath(inp, NULL), *l = cat(tmp, "Inputs");
+        if (!abs || symlink(abs, l)) die("cannot link %s", inp);
+        free(abs);
+        free(l);
+    }
+    char *cons = cat(k->casedir, "constant");
+    char *ls = NULL;
+    const char *names[] = {"polyMesh", "faMesh"};
+    for (int i = 0; i < 2; ++i) {
+        char *f = cat(cons, names[i]), *abs = realpath(f, NULL), *l = cat(tmp, "constant");
+        char *l2 = cat(l, names[i]);
+        if (!abs || symlink(abs, l2)) die("%s: the case is not meshed (gfTerrainMesh)", f);
+        free(f), free(abs), free(l), free(l2);
+    }
+    if (asprintf(&ls, "for f in '%s'/*; do case \"${f##*/}\" in polyMesh|faMesh) ;; *) cp -r \"$f\" '%s/constant/' ;; esac; done",
+                 cons, tmp) < 0 || strchr(cons, '\'') || strchr(tmp, '\''))
+        die("a quote in the folder's name %s", cons);
+    char *sh[] = {"sh", "-c", ls, NULL};
+    if (run_prog(sh, NULL)) die("cannot copy %s", cons);
+    free(ls);
+    /* the controls: only the end written, the maps and the path analysis by
+     * the solver at its end (no plots) */
+    char *cd = cat(tmp, "system/controlDict");
+    char *end = case_word(cd, "endTime");
+    if (!end) die("%s: no endTime", cd);
+    char err[1024];
+    gf_dict *D = gf_dict_read(cd, err, sizeof err);
+    if (!D) die("%s", err);
+    const gf_dict_entry *sf = gf_dict_find(D, "setFields");
+    int release_set = 0;
+    for (size_t t = 0; sf && t < sf->ntok; ++t) release_set |= strcmp(sf->tok[t], "releaseDict") == 0;
+    const int has_pa = gf_dict_find(D, "pathAnalysis") != NULL;
+    gf_dict_free(D);
+    for (size_t j = 0; j < c->d; ++j)
+        if (c->p[j].release && !release_set)
+            die("parameter %s (release factor): the case's system/controlDict does not set the release at the start "
+                "(setFields (releaseDict);), so a release factor cannot act",
+                c->p[j].name);
+    char text[4096];
+    snprintf(text, sizeof text,
+             "\n// gfCalibrate: the members' controls\nwriteInterval %s;\npeakFields yes;\nhazardMaps yes;\n%s\n", end,
+             has_pa ? "pathAnalysis { plots no; }"
+                    : (!isnan(k->o->s_runout) ? "pathAnalysis { path \"Inputs/LINES/path_aimec.shp\"; plots no; }" : ""));
+    if (append(cd, text)) die("cannot write %s", cd);
+    /* every parameter's entry must exist in the case (a typo is refused, not ignored) */
+    for (size_t j = 0; j < c->d; ++j) {
+        if (c->p[j].release) continue;
+        char *f = cat(tmp, c->p[j].file);
+        char *entry = strdup(c->p[j].entry);
+        char *fd[] = {"foamDictionary", "-entry", entry, "-value", f, NULL};
+        char *log = cat(tmp, "log.check");
+        if (!exists(f) || run_prog(fd, log) != 0)
+            die("parameter %s: %s has no entry %s (%s)", c->p[j].name, c->p[j].file, c->p[j].entry, c->path);
+        unlink(log);
+        free(f), free(log), free(entry);
+    }
+    if (rename(tmp, k->templ)) die("cannot rename %s", tmp);
+    free(tmp), free(sys), free(zero), free(inp), free(cons), free(cd), free(end);
+}
+
+/*-------------------------------------------------------------------- -observe --*/
+
+static void write_point_shp(const char *path, const char *wkt, double x, double y)
+{
+    GDALDriverH drv = GDALGetDriverByName("ESRI Shapefile");
+    if (!drv) die("GDAL lacks the ESRI Shapefile driver");
+    GDALDatasetH ds = GDALCreate(drv, path, 0, 0, 0, GDT_Unknown, NULL);
+    if (!ds) die("%s: cannot write", path);
+    OGRSpatialReferenceH srs = *wkt ? OSRNewSpatialReference(wkt) : NULL;
+    OGRLayerH L = GDALDatasetCreateLayer(ds, "runout", srs, wkbPoint, NULL);
+    OGRFeatureH f = OGR_F_Create(OGR_L_GetLayerDefn(L));
+    OGRGeometryH g = OGR_G_CreateGeometry(wkbPoint);
+    OGR_G_SetPoint_2D(g, 0, x, y);
+    OGR_F_SetGeometryDirectly(f, g);
+    if (OGR_L_CreateFeature(L, f) != OGRERR_NONE) die("%s: cannot write the point", path);
+    OGR_F_Destroy(f);
+    if (srs) OSRDestroySpatialReference(srs);
+    GDALClose(ds);
+}
+
+static void write_outline_shp(const char *path, const gf_raster *grid, const unsigned char *mask)
+{
+    GDALDriverH mem = GDALGetDriverByName("MEM"), drv = GDALGetDriverByName("ESRI Shapefile");
+    if (!mem || !drv) die("GDAL lacks the MEM or ESRI Shapefile driver");
+    GDALDatasetH r = GDALCreate(mem, "", grid->nx, grid->ny, 1, GDT_Byte, NULL);
+    GDALSetGeoTransform(r, (double *)grid->gt);
+    GDALRasterBandH b = GDALGetRasterBand(r, 1);
+    if (GDALRasterIO(b, GF_Write, 0, 0, grid->nx, grid->ny, (void *)mask, grid->nx, grid->ny, GDT_Byte, 0, 0) != CE_None)
+        die("outline: cannot fill the mask");
+    GDALDatasetH ds = GDALCreate(drv, path, 0, 0, 0, GDT_Unknown, NULL);
+    if (!ds) die("%s: cannot write", path);
+    OGRSpatialReferenceH srs = *grid->wkt ? OSRNewSpatialReference(grid->wkt) : NULL;
+    OGRLayerH L = GDALDatasetCreateLayer(ds, "outline", srs, wkbPolygon, NULL);
+    OGRFieldDefnH fd = OGR_Fld_Create("affected", OFTInteger);
+    OGR_L_CreateField(L, fd, 1);
+    OGR_Fld_Destroy(fd);
+    /* the mask band as its own mask: only the affected pixels become polygons */
+    if (GDALPolygonize(b, b, L, 0, NULL, NULL, NULL) != CE_None) die("%s: GDALPolygonize failed", path);
+    if (srs) OSRDestroySpatialReference(srs);
+    GDALClose(ds);
+    GDALClose(r);
+}
+
+static int observe(int argc, char **argv)
+{
+    const char *run = NULL, *out = NULL;
+    double threshold = 1, shift = 0, rshift = 0;
+    for (int i = 2; i < argc; ++i) {
+        if (strcmp(argv[i], "-threshold") == 0 && i + 1 < argc) {
+            if (!gf_parse_number(argv[++i], &threshold) || !(threshold >= 0)) die("-threshold %s: a number >= 0 [kPa]", argv[i]);
+        } else if (strcmp(argv[i], "-shift") == 0 && i + 1 < argc) {
+            if (!gf_parse_number(argv[++i], &shift) || shift != floor(shift) || fabs(shift) > 1000)
+                die("-shift %s: a whole number of pixels in [-1000, 1000]", argv[i]);
+        } else if (strcmp(argv[i], "-runoutShift") == 0 && i + 1 < argc) {
+            if (!gf_parse_number(argv[++i], &rshift) || fabs(rshift) > 1e5) die("-runoutShift %s: metres in [-1e5, 1e5]", argv[i]);
+        } else if (!run) {
+            run = argv[i];
+        } else if (!out) {
+            out = argv[i];
+        } else {
+            die("-observe: unexpected argument %s", argv[i]);
+        }
+    }
+    if (!run || !out) die("usage: gfCalibrate -observe RUN OUTDIR [-threshold KPA] [-shift CELLS] [-runoutShift M]");
+    GDALAllRegister();
+    mkdir(out, 0755);
+    char *ppr = cat(run, "postProcessing/hazardMaps/pressurePeak.tif");
+    gf_raster r;
+    if (gf_raster_read(ppr, &r)) die("%s: %s (run the case with hazardMaps yes)", ppr, gf_error_detail());
+    const size_t n = (size_t)r.nx * (size_t)r.ny;
+    unsigned char *mask = calloc(n, 1);
+    size_t count = 0;
+    const long s = (long)shift;
+    for (long row = 0; row < r.ny; ++row)
+        for (long q = 0; q < r.nx; ++q) {
+            const long from = q - s;
+            if (from < 0 || from >= r.nx) continue;
+            const double v = r.z[(size_t)row * (size_t)r.nx + (size_t)from];
+            mask[(size_t)row * (size_t)r.nx + (size_t)q] = v > threshold;
+            count += v > threshold;
+        }
+    if (count == 0) die("%s: no pixel above %g kPa: nothing observed", ppr, threshold);
+    char *shp = cat(out, "outline.shp");
+    write_outline_shp(shp, &r, mask);
+    printf("outline %s: %zu pixels above %g kPa%s\n", shp, count, threshold, s ? " (shifted)" : "");
+    char *pa = cat(run, "postProcessing/pathAnalysis/pathAnalysis.csv");
+    double sr = csv_value(pa, "sRunout"), x = csv_value(pa, "xRunout"), y = csv_value(pa, "yRunout");
+    if (isnan(x) || isnan(y)) die("%s: no xRunout, yRunout (run the path analysis)", pa);
+    if (rshift != 0) {
+        char *pf = cat(run, "Inputs/LINES/path_aimec.shp");
+        size_t np;
+        double *xy;
+        if (gf_path_read(pf, &np, &xy)) die("%s: %s", pf, gf_error_detail());
+        /* move the point by rshift along the path's direction there */
+        double s0, l;
+        gf_path_locate(np, xy, x, y, &s0, &l);
+        double acc = 0;
+        for (size_t i = 0; i + 1 < np; ++i) {
+            const double dx = xy[2 * i + 2] - xy[2 * i], dy = xy[2 * i + 3] - xy[2 * i + 1], len = hypot(dx, dy);
+            if (acc + len >= s0 || i + 2 == np) {
+                x += rshift * dx / len;
+                y += rshift * dy / len;
+                break;
+            }
+            acc += len;
+        }
+        free(xy);
+        free(pf);
+    }
+    char *pt = cat(out, "runout.shp");
+    write_point_shp(pt, r.wkt, x, y);
+    printf("runout point %s: (%.2f, %.2f), the run's sRunout %.2f m%s\n", pt, x, y, sr, rshift != 0 ? " (moved)" : "");
+    char *th = cat(run, "postProcessing/hazardMaps/thickness.tif");
+    gf_raster t;
+    if (gf_raster_read(th, &t) == GF_SUCCESS) {
+        char *dep = cat(out, "deposit.tif");
+        if (gf_raster_write(dep, "GTiff", &t, t.z)) die("%s: %s", dep, gf_error_detail());
+        printf("deposit %s: the thickness at the run's end\n", dep);
+        gf_raster_free(&t);
+        free(dep);
+    }
+    gf_raster_free(&r);
+    free(mask), free(ppr), free(shp), free(pa), free(pt), free(th);
+    return 0;
+}
+
+/*--------------------------------------------------------------------- analysis --*/
+
+static void write_outline_comparison(const calib *k, const char *m, const char *out)
+{
+    const observation *o = k->o;
+    if (!o->mask) return;
+    char *ppr = cat(m, "postProcessing/hazardMaps/pressurePeak.tif");
+    gf_raster r;
+    if (gf_raster_read(ppr, &r)) {
+        free(ppr);
+        return;
+    }
+    const size_t n = (size_t)r.nx * (size_t)r.ny;
+    double *cls = malloc(n * sizeof *cls);
+    for (size_t i = 0; i < n; ++i) {
+        const int s = r.z[i] > k->c->threshold, ob = o->mask[i];
+        cls[i] = !o->valid[i] || (!s && !ob) ? NAN : s && ob ? 1 : s ? 2 : 3;
+    }
+    if (gf_raster_write(out, "GTiff", &r, cls)) fprintf(stderr, "%s: %s\n", prog, gf_error_detail());
+    free(cls);
+    gf_raster_free(&r);
+    free(ppr);
+}
+
+/* the loss over a pair of parameters: the evaluations, the emulator's
+ * contours, the ridge and the accepted points (gnuplot) */
+static void loss_picture(const calib *k, const gf_calib_run *run, const int *accepted, const gf_emulator *em,
+                         int have_em, size_t a, size_t b, size_t best)
+{
+    const config *c = k->c;
+    const size_t d = run->d;
+    char name[256];
+    snprintf(name, sizeof name, "loss_%s_%s", c->p[a].name, c->p[b].name);
+    char *dat = NULL, *gp = NULL, *png = NULL, *grid = NULL;
+    if (asprintf(&dat, "%s/%s.dat", k->dir, name) < 0 || asprintf(&gp, "%s/%s.gp", k->dir, name) < 0 ||
+        asprintf(&png, "%s/%s.png", k->dir, name) < 0 || asprintf(&grid, "%s/%s.grid", k->dir, name) < 0)
+        die("out of memory");
+    FILE *f = fopen(dat, "w");
+    if (!f) return;
+    for (size_t i = 0; i < run->n; ++i)
+        if (run->ev[i].ok)
+            fprintf(f, "%.9g %.9g %.9g %d\n", value(&c->p[a], run->u[i * d + a]), value(&c->p[b], run->u[i * d + b]),
+                    run->ev[i].loss, accepted[i]);
+    fclose(f);
+    int contours = 0;
+    if (have_em) {
+        FILE *g = fopen(grid, "w");
+        if (g) {
+            double *u = malloc(d * sizeof *u);
+            for (int i = 0; i <= 60; ++i) {
+                for (int j = 0; j <= 60; ++j) {
+                    memcpy(u, run->u + best * d, d * sizeof *u);
+                    u[a] = i / 60.0;
+                    u[b] = j / 60.0;
+                    fprintf(g, "%.9g %.9g %.9g\n", value(&c->p[a], u[a]), value(&c->p[b], u[b]), gf_emulator_eval(em, u));
+                }
+                fprintf(g, "\n");
+            }
+            free(u);
+            fclose(g);
+            contours = 1;
+        }
+    }
+    f = fopen(gp, "w");
+    if (!f) return;
+    fprintf(f,
+            "set terminal pngcairo size 900,760 font ',11'\nset output '%s'\n"
+            "set xlabel '%s'\nset ylabel '%s'\nset xrange [%g:%g]\nset yrange [%g:%g]\n"
+            "set title 'loss over %s and %s (others at the best set)'\nset key outside bottom center horizontal\n"
+            "set cblabel 'loss'\nset palette rgb 33,13,10\n",
+            png, c->p[a].name, c->p[b].name, c->p[a].lo, c->p[a].hi, c->p[b].lo, c->p[b].hi, c->p[a].name,
+            c->p[b].name);
+    if (contours) {
+        fprintf(f, "set contour base\nunset surface\nset view map\nset cntrparam levels auto 8\n"
+                   "set table '%s.cnt'\nsplot '%s' using 1:2:3 notitle\nunset table\nunset contour\n",
+                gp, grid);
+    }
+    fprintf(f, "plot ");
+    if (contours) fprintf(f, "'%s.cnt' using 1:2 with lines lc rgb '#888888' title 'emulator contours', ", gp);
+    fprintf(f, "'%s' using 1:2:3 with points pt 7 ps 1 lc palette title 'evaluations', "
+               "'' using ($4 > 0 ? $1 : 1/0):2 with points pt 6 ps 2 lc rgb 'black' title 'reproduce the observation', "
+               "'-' using 1:2 with points pt 3 ps 3 lw 2 lc rgb 'red' title 'best'",
+            dat);
+    int ridge = have_em && em->n_ridge > 0 && isfinite(em->ridge_t_min) && isfinite(em->ridge_t_max);
+    if (ridge) fprintf(f, ", '-' using 1:2 with lines lw 2 dt 2 lc rgb 'blue' title 'ridge (equal loss)'");
+    fprintf(f, "\n%.9g %.9g\ne\n", value(&c->p[a], run->u[best * d + a]), value(&c->p[b], run->u[best * d + b]));
+    if (ridge) {
+        /* the ridge line: ridge_point + t direction_param[smallest curvature] */
+        const size_t kk = d - 1;
+        for (int s = 0; s <= 1; ++s) {
+            const double t = s ? em->ridge_t_max : em->ridge_t_min;
+            fprintf(f, "%.9g %.9g\n", em->ridge_point[a] + t * em->direction_param[kk * d + a],
+                    em->ridge_point[b] + t * em->direction_param[kk * d + b]);
+        }
+        fprintf(f, "e\n");
+    }
+    fclose(f);
+    char *argv[] = {"gnuplot", gp, NULL};
+    char *log = cat(k->dir, "log.gnuplot");
+    if (run_prog(argv, log) != 0) fprintf(stderr, "%s: gnuplot %s failed (%s)\n", prog, gp, log);
+    free(log), free(dat), free(gp), free(png), free(grid);
+}
+
+static int analyse(calib *k, const gf_calib_run *run, double wall)
+{
+    const config *c = k->c;
+    const size_t d = run->d, n = run->n;
+    char *csv = cat(k->dir, "evaluations.csv");
+    FILE *f = fopen(csv, "w");
+    if (!f) die("%s: cannot write", csv);
+    fprintf(f, "evaluation,phase,refinement");
+    for (size_t j = 0; j < d; ++j) fprintf(f, ",%s", c->p[j].name);
+    fprintf(f, ",status,loss,runoutError_m,jaccard,tversky,depositRmse_m,member\n");
+    size_t nok = 0, nfail = 0, nused = 0, best = (size_t)-1;
+    for (size_t i = 0; i < n; ++i) {
+        char m[4096];
+        member_name(k, i, m, sizeof m);
+        char *res = cat(m, "result");
+        const int ran = exists(res);
+        free(res);
+        if (!ran) continue; /* a refinement that stopped early leaves its indices unused */
+        ++nused;
+        const gf_calib_eval *e = &run->ev[i];
+        e->ok ? ++nok : ++nfail;
+        if (e->ok && (best == (size_t)-1 || e->loss < run->ev[best].loss)) best = i;
+        fprintf(f, "%zu,%s,%d", i, phase_name(run->phase[i]), run->start[i]);
+        for (size_t j = 0; j < d; ++j) fprintf(f, ",%.9g", value(&c->p[j], run->u[i * d + j]));
+        fprintf(f, ",%s,%.9g,%.9g,%.9g,%.9g,%.9g,evals/eval_%04zu\n", e->ok ? "ok" : "failed", e->loss,
+                e->scores.runout_error, e->jaccard, e->scores.tversky, e->scores.rmse, i);
+    }
+    fclose(f);
+    if (best == (size_t)-1) die("every evaluation failed (their folders: %s)", k->evals);
+
+    /* the verdict, and the evaluations that reproduce the observation */
+    double *loss = malloc(nused * sizeof *loss), *jac = malloc(nused * sizeof *jac), *rerr = malloc(nused * sizeof *rerr);
+    size_t *idx = malloc(nused * sizeof *idx);
+    size_t m = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (run->ev[i].ok) {
+            idx[m] = i;
+            loss[m] = run->ev[i].loss;
+            jac[m] = run->ev[i].jaccard;
+            rerr[m] = run->ev[i].scores.runout_error;
+            ++m;
+        }
+    gf_reach_criteria crit = {NAN, k->o->mask ? c->min_jaccard : NAN, !isnan(k->o->s_runout) ? c->runout_tol : NAN};
+    if (!k->o->mask && isnan(k->o->s_runout)) crit.max_loss = 1; /* the deposit only: within one scale */
+    gf_reach_result verdict;
+    if (gf_reach_verdict(m, loss, k->o->mask ? jac : NULL, isnan(k->o->s_runout) ? NULL : rerr, &crit, &verdict))
+        die("verdict: %s", gf_error_detail());
+    int *accepted = calloc(n, sizeof *accepted);
+    double lo[MAXP], hi[MAXP];
+    size_t nacc = 0;
+    for (size_t j = 0; j < d; ++j) lo[j] = INFINITY, hi[j] = -INFINITY;
+    for (size_t q = 0; q < m; ++q) {
+        const int meets = (isnan(crit.min_jaccard) || jac[q] >= crit.min_jaccard) &&
+                          (isnan(crit.runout_tolerance) || fabs(rerr[q]) <= crit.runout_tolerance) &&
+                          (isnan(crit.max_loss) || loss[q] <= crit.max_loss);
+        if (!meets) continue;
+        accepted[idx[q]] = 1;
+        ++nacc;
+        for (size_t j = 0; j < d; ++j) {
+            const double v = value(&c->p[j], run->u[idx[q] * d + j]);
+            lo[j] = fmin(lo[j], v);
+            hi[j] = fmax(hi[j], v);
+        }
+    }
+
+    /* the emulator around the best point: the ridge */
+    gf_emulator em;
+    memset(&em, 0, sizeof em);
+    const size_t ncoef = 1 + d + d * (d + 1) / 2;
+    double *uu = malloc(m * d * sizeof *uu), plo[MAXP], phi[MAXP];
+    for (size_t q = 0; q < m; ++q) memcpy(uu + q * d, run->u + idx[q] * d, d * sizeof *uu);
+    for (size_t j = 0; j < d; ++j) plo[j] = c->p[j].lo, phi[j] = c->p[j].hi;
+    size_t nfit = 3 * ncoef > 12 ? 3 * ncoef : 12;
+    if (nfit > m) nfit = m;
+    int have_em = m >= ncoef + 1 && gf_emulator_fit(m, d, uu, loss, nfit, plo, phi, GF_RIDGE_FRACTION, &em) == GF_SUCCESS;
+    char emwhy[512] = "";
+    if (!have_em) snprintf(emwhy, sizeof emwhy, "%s", m < ncoef + 1 ? "too few evaluations" : gf_error_detail());
+
+    /* Morris sensitivities of the loss, the runout error and the outline */
+    double mu_star[3 * MAXP], sigma[3 * MAXP], mu[3 * MAXP];
+    int have_morris = 0;
+    if (run->n_morris) {
+        const size_t r = run->n_morris / (d + 1);
+        double *y = malloc(run->n_morris * 3 * sizeof *y);
+        int all_ok = 1;
+        for (size_t i = 0; i < run->n_morris; ++i) {
+            const gf_calib_eval *e = &run->ev[run->n_sobol + i];
+            all_ok &= e->ok;
+            y[3 * i] = e->loss;
+            y[3 * i + 1] = isnan(e->scores.runout_error) ? 0 : e->scores.runout_error;
+            y[3 * i + 2] = isnan(e->jaccard) ? 0 : 1 - e->jaccard;
+        }
+        have_morris = all_ok && gf_morris_effects(r, d, run->u + run->n_sobol * d, y, 3, mu, mu_star, sigma) == GF_SUCCESS;
+        free(y);
+    }
+
+    /* best/: the best evaluation's case */
+    char bm[4096];
+    member_name(k, best, bm, sizeof bm);
+    char *bestdir = cat(k->dir, "best");
+    char *rm[] = {"rm", "-rf", bestdir, NULL}, *cp[] = {"cp", "-a", bm, bestdir, NULL};
+    run_prog(rm, NULL);
+    if (run_prog(cp, NULL)) fprintf(stderr, "%s: cannot copy %s to %s\n", prog, bm, bestdir);
+    char *cmp = cat(k->dir, "bestOutline.tif");
+    write_outline_comparison(k, bm, cmp);
+
+    for (size_t a = 0; a < d; ++a)
+        for (size_t b = a + 1; b < d; ++b) loss_picture(k, run, accepted, &em, have_em, a, b, best);
+
+    /* parameters.csv and summary.txt */
+    char *pc = cat(k->dir, "parameters.csv");
+    f = fopen(pc, "w");
+    if (!f) die("%s: cannot write", pc);
+    fprintf(f, "parameter,best,acceptedMin,acceptedMax,rangeMin,rangeMax,identifiable\n");
+    int ridge_param[MAXP] = {0};
+    if (have_em && em.n_ridge > 0)
+        for (size_t kk = 0; kk < d; ++kk)
+            if (em.ridge[kk])
+                for (size_t j = 0; j < d; ++j) ridge_param[j] |= fabs(em.direction[kk * d + j]) > 0.3;
+    for (size_t j = 0; j < d; ++j)
+        fprintf(f, "%s,%.9g,%.9g,%.9g,%.9g,%.9g,%s\n", c->p[j].name, value(&c->p[j], run->u[best * d + j]),
+                nacc ? lo[j] : NAN, nacc ? hi[j] : NAN, c->p[j].lo, c->p[j].hi, ridge_param[j] ? "ridge" : "yes");
+    fclose(f);
+
+    char *sp = cat(k->dir, "summary.txt");
+    f = fopen(sp, "w");
+    if (!f) die("%s: cannot write", sp);
+    for (int pass = 0; pass < 2; ++pass) {
+        FILE *o = pass ? stdout : f;
+        fprintf(o, "gfCalibrate %s: %s\n", GF_VERSION_STRING, k->casedir);
+        fprintf(o, "evaluations: %zu (%zu ok, %zu failed; %zu run now, %zu read from an earlier run) in %.1f s wall "
+                   "on %zu workers: %.1f evaluations per minute\n",
+                nused, nok, nfail, k->ran, k->resumed, wall, k->c->plan.threads,
+                k->ran > 0 ? 60.0 * (double)k->ran / wall : NAN);
+        fprintf(o, "verdict: %s: %s\n", verdict.verdict == GF_REACHABLE ? "REACHABLE" : "UNREACHABLE", verdict.reason);
+        const gf_calib_eval *b = &run->ev[best];
+        fprintf(o, "best evaluation %zu (%s): loss %.4f", best, phase_name(run->phase[best]), b->loss);
+        if (!isnan(b->scores.runout_error)) fprintf(o, ", runout error %+.1f m", b->scores.runout_error);
+        if (!isnan(b->jaccard)) fprintf(o, ", Jaccard %.3f, Tversky %.3f", b->jaccard, b->scores.tversky);
+        if (!isnan(b->scores.rmse)) fprintf(o, ", deposit RMSE %.3f m", b->scores.rmse);
+        fprintf(o, "\n\n%-16s %12s %27s %25s %s\n", "parameter", "best", "reproduce the observation", "design range",
+                "constrained");
+        for (size_t j = 0; j < d; ++j) {
+            char acc[64] = "none";
+            if (nacc) snprintf(acc, sizeof acc, "%.4g .. %.4g", lo[j], hi[j]);
+            fprintf(o, "%-16s %12.5g %27s %12.4g .. %-10.4g %s\n", c->p[j].name, value(&c->p[j], run->u[best * d + j]),
+                    acc, c->p[j].lo, c->p[j].hi, ridge_param[j] ? "no: on a ridge" : "yes");
+        }
+        fprintf(o, "(%zu evaluations reproduce the observation: Jaccard >= %g, |runout error| <= %g m)\n", nacc,
+                c->min_jaccard, c->runout_tol);
+        if (have_em) {
+            fprintf(o, "\nemulator (quadratic, %zu evaluations nearest the best, R2 %.3f): curvatures", em.n_fit, em.r2);
+            for (size_t kk = 0; kk < d; ++kk) fprintf(o, " %.4g", em.curvature[kk]);
+            fprintf(o, "\n");
+            if (em.n_ridge) {
+                fprintf(o, "ridge: %zu direction%s of equal loss (curvature < %g of the largest); along",
+                        em.n_ridge, em.n_ridge > 1 ? "s" : "", GF_RIDGE_FRACTION);
+                const size_t kk = d - 1;
+                for (size_t j = 0; j < d; ++j) fprintf(o, " %s %+.4g", c->p[j].name, em.direction_param[kk * d + j]);
+                fprintf(o, " per unit step through");
+                for (size_t j = 0; j < d; ++j) fprintf(o, " %s %.4g", c->p[j].name, em.ridge_point[j]);
+                fprintf(o, ": the observation cannot tell these parameters apart\n");
+            } else {
+                fprintf(o, "no ridge: every direction is constrained\n");
+            }
+        } else {
+            fprintf(o, "\nemulator: not fitted (%s)\n", emwhy);
+        }
+        if (have_morris) {
+            fprintf(o, "\nsensitivity (Morris mu*, per unit of each range, %zu trajectories):\n%-16s %10s %14s %12s\n",
+                    run->n_morris / (d + 1), "parameter", "loss", "runout [m]", "1 - Jaccard");
+            for (size_t j = 0; j < d; ++j)
+                fprintf(o, "%-16s %10.4g %14.4g %12.4g\n", c->p[j].name, mu_star[j], mu_star[d + j], mu_star[2 * d + j]);
+        } else if (run->n_morris) {
+            fprintf(o, "\nsensitivity: not computed (a Morris member failed)\n");
+        }
+        fprintf(o, "\noutputs: %s/{evaluations.csv,parameters.csv,best/,bestOutline.tif,loss_*.png}\n", k->dir);
+    }
+    fclose(f);
+    free(loss), free(jac), free(rerr), free(idx), free(accepted), free(uu), free(csv), free(bestdir), free(cmp),
+        free(pc), free(sp);
+    if (have_em) gf_emulator_free(&em);
+    return verdict.verdict == GF_REACHABLE ? 0 : 3;
+}
+
+/*------------------------------------------------------------------------- main --*/
+
+static void usage(int st)
+{
+    fprintf(st ? stderr : stdout,
+            "usage: gfCalibrate [-np N] [-dict FILE] [-out DIR] CASE\n"
+            "       gfCalibrate -observe RUN OUTDIR [-threshold KPA] [-shift CELLS] [-runoutShift M]\n"
+            "       gfCalibrate -version\n"
+            "Back-calculates the parameters of system/calibrationDict from the observations there\n"
+            "(doc/guide/back-calculation.md); exit status 3 when the observation is unreachable.\n");
+    exit(st);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc > 1 && strcmp(argv[1], "-version") == 0) {
+        printf("%s\n", GF_VERSION_STRING);
+        return 0;
+    }
+    if (argc > 1 && (strcmp(argv[1], "-help") == 0 || strcmp(argv[1], "--help") == 0)) usage(0);
+    if (argc > 1 && strcmp(argv[1], "-observe") == 0) return observe(argc, argv);
+    long np = sysconf(_SC_NPROCESSORS_ONLN);
+    const char *dictp = NULL, *out = NULL, *casedir = NULL;
+    for (int i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "-np") == 0 && i + 1 < argc) {
+            double v;
+            if (!gf_parse_number(argv[++i], &v) || v != floor(v) || v < 1 || v > 256) die("-np %s: a whole number in [1, 256]", argv[i]);
+            np = (long)v;
+        } else if (strcmp(argv[i], "-dict") == 0 && i + 1 < argc) {
+            dictp = argv[++i];
+        } else if (strcmp(argv[i], "-out") == 0 && i + 1 < argc) {
+            out = argv[++i];
+        } else if (argv[i][0] == '-') {
+            fprintf(stderr, "%s: unknown option %s\n", prog, argv[i]);
+            usage(2);
+        } else if (!casedir) {
+            casedir = argv[i];
+        } else {
+            usage(2);
+        }
+    }
+    if (!casedir) usage(2);
+    char *casereal = realpath(casedir, NULL);
+    if (!casereal) die("%s: %s", casedir, strerror(errno));
+    char *dp = dictp ? strdup(dictp) : cat(casereal, "system/calibrationDict");
+    config c;
+    read_config(dp, &c);
+    GDALAllRegister();
+    observation o;
+    read_observation(casereal, &c, &o);
+
+    calib k;
+    memset(&k, 0, sizeof k);
+    k.c = &c;
+    k.o = &o;
+    k.casedir = casereal;
+    if (out) {
+        k.dir = strdup(out);
+    } else if (asprintf(&k.dir, "%s-calibration", casereal) < 0) {
+        die("out of memory");
+    }
+    if (mkdir(k.dir, 0755) && errno != EEXIST) die("%s: cannot make the folder: %s", k.dir, strerror(errno));
+    char *absdir = realpath(k.dir, NULL);
+    if (!absdir) die("%s: %s", k.dir, strerror(errno));
+    free(k.dir);
+    k.dir = absdir;
+    k.evals = cat(k.dir, "evals");
+    k.templ = cat(k.dir, "template");
+    mkdir(k.evals, 0755);
+    /* the dictionary beside the results (a record of what ran) */
+    {
+        char *copy = cat(k.dir, "calibrationDict");
+        char *cp[] = {"cp", dp, copy, NULL};
+        if (strcmp(dp, copy) != 0) run_prog(cp, NULL);
+        free(copy);
+    }
+    make_template(&k);
+    c.plan.threads = (size_t)np;
+    char *logfmt = cat(k.dir, "log.worker_%u");
+    char *argvw[] = {"faGranularFlowFoam", "-case", casereal, "-members", "-", NULL};
+    printf("gfCalibrate: %zu parameters, %zu design points + %zu Morris + %zu refinements x %zu on %ld workers (%s)\n",
+           c.d, c.plan.n_sobol, c.plan.morris_r * (c.d + 1), c.plan.n_starts, c.plan.refine_evals, np, k.dir);
+    fflush(stdout);
+    if (gf_workers_start((size_t)np, argvw, logfmt, &k.pool)) die("workers: %s", gf_error_detail());
+    pthread_mutex_init(&k.lock, NULL);
+    k.t0 = now();
+    gf_calib_run run;
+    const gf_status st = gf_calibrate_run(&c.plan, evaluate, &k, &run);
+    const double wall = now() - k.t0;
+    if (st) die("calibration: %s", gf_error_detail());
+    if (gf_workers_stop(k.pool)) fprintf(stderr, "%s: %s\n", prog, gf_error_detail());
+    const int verdict = analyse(&k, &run, wall);
+    gf_calib_run_free(&run);
+    return verdict;
+}
