@@ -299,6 +299,13 @@ static void read_config(const char *path, config *c)
     c->plan.tol = num(c, R, "tolerance", 0.01, 1e-9, 1);
     c->plan.failed_loss = 10;
 
+    const gf_dict *X = sub(c, D, "exploration", 0);
+    gf_dict emptyX = {path, (char *)"exploration", NULL, 0};
+    if (!X) X = &emptyX;
+    c->plan.n_explore = whole(c, X, "points", 8 * (double)c->d, 0, 1e5);
+    c->plan.explore_rounds = whole(c, X, "rounds", 3, 1, 100);
+    c->plan.explore_margin = num(c, X, "margin", 0.5, 0, 10);
+
     const gf_dict *A = sub(c, D, "acceptance", 0);
     gf_dict emptyA = {path, (char *)"acceptance", NULL, 0};
     if (!A) A = &emptyA;
@@ -311,7 +318,7 @@ static void read_config(const char *path, config *c)
         bad(c, u, u->key, "unknown key%s%s (allowed: parameters, observations { outline runoutPoint runout deposit }, "
                           "scores { threshold tverskyAlpha tverskyBeta runoutWeight runoutScale outlineWeight "
                           "depositWeight depositScale depositThreshold }, design { sobol morrisTrajectories "
-                          "morrisLevels seed }, refinement { starts evaluations step tolerance }, acceptance { "
+                          "morrisLevels seed }, refinement { starts evaluations step tolerance }, exploration { points rounds margin }, acceptance { "
                           "runoutTolerance minJaccard })",
             in && *in->name ? " in " : "", in && *in->name ? in->name : "");
     gf_dict_free(D);
@@ -613,12 +620,26 @@ static void write_result(const char *m, const double *u, size_t d, const gf_cali
 
 static const char *phase_name(int phase)
 {
-    return phase == GF_PHASE_SOBOL ? "design" : phase == GF_PHASE_MORRIS ? "morris" : "refine";
+    return phase == GF_PHASE_SOBOL    ? "design"
+           : phase == GF_PHASE_MORRIS ? "morris"
+           : phase == GF_PHASE_REFINE ? "refine"
+                                      : "explore";
 }
 
 static size_t n_design(const calib *k)
 {
     return k->c->plan.n_sobol + (k->c->plan.morris_r ? k->c->plan.morris_r * (k->c->d + 1) : 0);
+}
+
+/* does an evaluation reproduce the observation (the acceptance criteria)? */
+static int meets(const calib *k, const gf_calib_eval *e)
+{
+    const config *c = k->c;
+    if (!e->ok) return 0;
+    if (k->o->mask && !(e->jaccard >= c->min_jaccard)) return 0;
+    if (!isnan(k->o->s_runout) && !(fabs(e->scores.runout_error) <= c->runout_tol)) return 0;
+    if (!k->o->mask && isnan(k->o->s_runout) && !(e->loss <= 1)) return 0; /* the deposit alone: within its scale */
+    return 1;
 }
 
 static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf_calib_eval *e)
@@ -651,7 +672,7 @@ static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf
         }
         int ok = 0;
         if (!bad && gf_workers_run(k->pool, m, &ok, why, sizeof why)) die("%s", gf_error_detail());
-        *e = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN}, NAN};
+        *e = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN}, NAN, 0};
         if (ok && score(k, m, e, why, sizeof why) != 0) e->ok = 0;
         /* keep the logs, rasters and tables; the fields go */
         char *t = NULL;
@@ -672,10 +693,14 @@ static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf
             free(f);
         }
     }
+    e->accepted = meets(k, e);
     pthread_mutex_lock(&k->lock);
     ++k->done;
     resumed ? ++k->resumed : ++k->ran;
-    printf("eval %4zu %-6s", index, index < n_design(k) ? (index < c->plan.n_sobol ? "design" : "morris") : "refine");
+    printf("eval %4zu %-7s", index,
+           index < n_design(k)                               ? (index < c->plan.n_sobol ? "design" : "morris")
+           : index < gf_calib_explore_index(&c->plan, 0) ? "refine"
+                                                             : "explore");
     for (size_t j = 0; j < d; ++j) printf(" %s %-8.4g", c->p[j].name, value(&c->p[j], u[j]));
     if (e->ok) {
         printf(": loss %.4f", e->loss);
@@ -1056,10 +1081,7 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
     size_t nacc = 0;
     for (size_t j = 0; j < d; ++j) lo[j] = INFINITY, hi[j] = -INFINITY;
     for (size_t q = 0; q < m; ++q) {
-        const int meets = (isnan(crit.min_jaccard) || jac[q] >= crit.min_jaccard) &&
-                          (isnan(crit.runout_tolerance) || fabs(rerr[q]) <= crit.runout_tolerance) &&
-                          (isnan(crit.max_loss) || loss[q] <= crit.max_loss);
-        if (!meets) continue;
+        if (!run->ev[idx[q]].accepted) continue; /* the criteria of the verdict (meets) */
         accepted[idx[q]] = 1;
         ++nacc;
         for (size_t j = 0; j < d; ++j) {
@@ -1135,9 +1157,10 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
         FILE *o = pass ? stdout : f;
         fprintf(o, "gfCalibrate %s: %s\n", GF_VERSION_STRING, k->casedir);
         fprintf(o, "evaluations: %zu (%zu ok, %zu failed; %zu run now, %zu read from an earlier run) in %.1f s wall "
-                   "on %zu workers: %.1f evaluations per minute\n",
-                nused, nok, nfail, k->ran, k->resumed, wall, k->c->plan.threads,
-                k->ran > 0 ? 60.0 * (double)k->ran / wall : NAN);
+                   "on %zu workers",
+                nused, nok, nfail, k->ran, k->resumed, wall, k->c->plan.threads);
+        if (k->ran > 0) fprintf(o, ": %.1f evaluations per minute", 60.0 * (double)k->ran / wall);
+        fprintf(o, "\n");
         fprintf(o, "verdict: %s: %s\n", verdict.verdict == GF_REACHABLE ? "REACHABLE" : "UNREACHABLE", verdict.reason);
         const gf_calib_eval *b = &run->ev[best];
         fprintf(o, "best evaluation %zu (%s): loss %.4f", best, phase_name(run->phase[best]), b->loss);
@@ -1152,8 +1175,9 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
             fprintf(o, "%-16s %12.5g %27s %12.4g .. %-10.4g %s\n", c->p[j].name, value(&c->p[j], run->u[best * d + j]),
                     acc, c->p[j].lo, c->p[j].hi, ridge_param[j] ? "no: on a ridge" : "yes");
         }
-        fprintf(o, "(%zu evaluations reproduce the observation: Jaccard >= %g, |runout error| <= %g m)\n", nacc,
-                c->min_jaccard, c->runout_tol);
+        fprintf(o, "(%zu evaluations reproduce the observation: Jaccard >= %g, |runout error| <= %g m; the range "
+                   "is theirs)\n",
+                nacc, c->min_jaccard, c->runout_tol);
         if (have_em) {
             fprintf(o, "\nemulator (quadratic, %zu evaluations nearest the best, R2 %.3f): curvatures", em.n_fit, em.r2);
             for (size_t kk = 0; kk < d; ++kk) fprintf(o, " %.4g", em.curvature[kk]);
@@ -1258,19 +1282,31 @@ int main(int argc, char **argv)
     k.evals = cat(k.dir, "evals");
     k.templ = cat(k.dir, "template");
     mkdir(k.evals, 0755);
-    /* the dictionary beside the results (a record of what ran) */
+    /* the dictionary beside the results (a record of what ran); a folder
+     * that holds another calibration's results is not mixed with this one */
     {
         char *copy = cat(k.dir, "calibrationDict");
-        char *cp[] = {"cp", dp, copy, NULL};
-        if (strcmp(dp, copy) != 0) run_prog(cp, NULL);
+        if (exists(copy)) {
+            char *cmp[] = {"cmp", "-s", dp, copy, NULL};
+            if (run_prog(cmp, NULL) != 0)
+                die("%s holds the results of another calibration (its calibrationDict differs from %s): give "
+                    "another -out, or remove it to start again",
+                    k.dir, dp);
+        } else {
+            char *cp[] = {"cp", dp, copy, NULL};
+            if (run_prog(cp, NULL)) die("cannot write %s", copy);
+        }
         free(copy);
     }
     make_template(&k);
     c.plan.threads = (size_t)np;
     char *logfmt = cat(k.dir, "log.worker_%u");
     char *argvw[] = {"faGranularFlowFoam", "-case", casereal, "-members", "-", NULL};
-    printf("gfCalibrate: %zu parameters, %zu design points + %zu Morris + %zu refinements x %zu on %ld workers (%s)\n",
-           c.d, c.plan.n_sobol, c.plan.morris_r * (c.d + 1), c.plan.n_starts, c.plan.refine_evals, np, k.dir);
+    printf("gfCalibrate: %zu parameters, %zu design points + %zu Morris + %zu refinements x %zu + %zu exploration "
+           "rounds x %zu = %zu evaluations at most, on %ld workers (%s)\n",
+           c.d, c.plan.n_sobol, c.plan.morris_r * (c.d + 1), c.plan.n_starts, c.plan.refine_evals,
+           c.plan.explore_rounds, c.plan.n_explore,
+           gf_calib_explore_index(&c.plan, c.plan.explore_rounds * c.plan.n_explore), np, k.dir);
     fflush(stdout);
     if (gf_workers_start((size_t)np, argvw, logfmt, &k.pool)) die("workers: %s", gf_error_detail());
     pthread_mutex_init(&k.lock, NULL);

@@ -339,6 +339,8 @@ typedef struct gf_calib_eval {
     double loss;       /**< gf_loss of its scores (NAN when it failed) */
     gf_scores scores;  /**< runout error, Tversky, RMSE, series RMSE (NAN: not observed) */
     double jaccard;    /**< the outline's Jaccard index (NAN: no outline observed) */
+    int accepted;      /**< 1: it reproduces the observation within its tolerance (the
+                            caller's criteria, e.g. gf_reach_criteria's) */
 } gf_calib_eval;
 
 /** The evaluation of parameter set `index` at u [d] (unit coordinates),
@@ -352,7 +354,11 @@ typedef gf_status (*gf_calib_evaluate)(size_t index, const double *u, size_t d, 
                                        gf_calib_eval *out);
 
 /** The plan: a space-filling design, Morris trajectories on top of it (the
- *  sensitivities), then simplex refinements from the best design points. */
+ *  sensitivities), simplex refinements from the best design points, then
+ *  an exploration of the region that reproduces the observation (a Sobol
+ *  design in the box around the accepted evaluations, widened: the second
+ *  population of a sequential ABC, so that the ranges come from runs that
+ *  sample the accepted region and not only the refinements' paths). */
 typedef struct gf_calib_plan {
     size_t d;            /**< parameters (1 .. GF_SOBOL_MAX_DIM) */
     size_t n_sobol;      /**< Sobol design points (>= 1) */
@@ -363,11 +369,23 @@ typedef struct gf_calib_plan {
     size_t refine_evals; /**< evaluations per refinement (>= d + 1) */
     double step, tol;    /**< the simplex's initial step and size tolerance (unit coordinates) */
     double failed_loss;  /**< the loss a failed member counts in a refinement (> 0, finite) */
+    size_t n_explore;    /**< exploration points per round (0: none) */
+    size_t explore_rounds; /**< exploration rounds (>= 1 when n_explore > 0): each round's box from
+                              every accepted evaluation so far; the rounds end early when a round
+                              widens the box by less than tol in every parameter */
+    double explore_margin; /**< the box around the accepted evaluations widened by this fraction of
+                              its width on each side (>= 0), and by at least 2 step; clipped to
+                              [0, 1]; around the best evaluation when none is accepted */
     size_t threads;      /**< evaluations at once (>= 1; one per worker) */
 } gf_calib_plan;
 
 /** Where an evaluation comes from. */
-typedef enum gf_calib_phase { GF_PHASE_SOBOL = 0, GF_PHASE_MORRIS = 1, GF_PHASE_REFINE = 2 } gf_calib_phase;
+typedef enum gf_calib_phase {
+    GF_PHASE_SOBOL = 0,
+    GF_PHASE_MORRIS = 1,
+    GF_PHASE_REFINE = 2,
+    GF_PHASE_EXPLORE = 3
+} gf_calib_phase;
 
 /** Every evaluation of a calibration, by index. */
 typedef struct gf_calib_run {
@@ -379,17 +397,25 @@ typedef struct gf_calib_run {
     size_t n_sobol, n_morris; /**< the design's parts: indices [0, n_sobol), then n_morris */
     int *converged;      /**< [n_starts] each refinement: 1 converged, 0 budget spent */
     size_t n_starts;
+    size_t n_explore;    /**< the exploration: the last explore_rounds n_explore indices (a
+                              round that did not run leaves its indices unused, ok = 0) */
+    size_t explore_rounds; /**< rounds run */
+    double explore_box[2 * GF_SOBOL_MAX_DIM]; /**< its box (unit coordinates): lo_j at [j], hi_j at
+                                                [GF_SOBOL_MAX_DIM + j] */
 } gf_calib_run;
 
-/** Index of evaluation j of refinement k: n_sobol + n_morris + k refine_evals + j. */
+/** Index of evaluation j of refinement k: n_sobol + n_morris + k refine_evals + j;
+ *  exploration point j: n_sobol + n_morris + n_starts refine_evals + j. */
 size_t gf_calib_refine_index(const gf_calib_plan *plan, size_t k, size_t j);
+size_t gf_calib_explore_index(const gf_calib_plan *plan, size_t j); /* j over all rounds: r n_explore + i */
 
 /** Run a calibration: the design's points (Sobol, then Morris trajectories,
  *  plan.threads at a time), then plan.n_starts simplex refinements
  *  (gf_refine_simplex) from the best successful design points (those
  *  farther than 2 tol from a start already taken, so that they explore
  *  different places), each refinement in its own thread, plan.threads at a
- *  time.  Indices are deterministic (gf_calib_refine_index); a refinement
+ *  time, then the exploration's points (plan.threads at a time).  Indices
+ *  are deterministic (gf_calib_refine_index); a refinement
  *  that stops before its budget leaves its remaining indices unused (ok =
  *  0, loss NAN, phase GF_PHASE_REFINE, start k).  The arrays are allocated
  *  here; gf_calib_run_free frees them.  Refused: a NULL argument, a plan

@@ -18,6 +18,11 @@ size_t gf_calib_refine_index(const gf_calib_plan *plan, size_t k, size_t j)
     return plan->n_sobol + nm + k * plan->refine_evals + j;
 }
 
+size_t gf_calib_explore_index(const gf_calib_plan *plan, size_t j)
+{
+    return gf_calib_refine_index(plan, plan->n_starts, 0) + j;
+}
+
 void gf_calib_run_free(gf_calib_run *run)
 {
     if (!run)
@@ -67,12 +72,14 @@ static int stopped(shared *s)
 static gf_status evaluate(shared *s, size_t index)
 {
     gf_calib_run *run = s->run;
-    gf_calib_eval e = {0, NAN, {NAN, NAN, NAN, NAN}, NAN};
+    gf_calib_eval e = {0, NAN, {NAN, NAN, NAN, NAN}, NAN, 0};
     const gf_status st = s->f(index, run->u + index * run->d, run->d, s->ctx, &e);
     if (st)
         return st;
-    if (!e.ok)
+    if (!e.ok) {
         e.loss = NAN;
+        e.accepted = 0;
+    }
     else if (!isfinite(e.loss) || e.loss < 0)
         return gf_fail(GF_ENONFINITE, "calibration: evaluation %zu returned loss %g (a failed member is ok = 0)",
                        index, e.loss);
@@ -188,16 +195,25 @@ gf_status gf_calibrate_run(const gf_calib_plan *plan, gf_calib_evaluate f, void 
         return gf_fail(GF_EDOM, "calibration: simplex step %g (allowed (0, 1]), tolerance %g (> 0), failed-member "
                                 "loss %g (> 0, finite)",
                        plan->step, plan->tol, plan->failed_loss);
+    if (plan->n_explore > 1000000 || !(plan->explore_margin >= 0) || !isfinite(plan->explore_margin) ||
+        (plan->n_explore && (plan->explore_rounds < 1 || plan->explore_rounds > 100)))
+        return gf_fail(GF_EDOM,
+                       "calibration: %zu exploration points (at most 1e6) in %zu rounds (1..100), margin %g (>= 0, "
+                       "finite)",
+                       plan->n_explore, plan->explore_rounds, plan->explore_margin);
     if (plan->threads < 1 || plan->threads > 256)
         return gf_fail(GF_EDOM, "calibration: %zu threads (allowed 1..256)", plan->threads);
 
     const size_t nm = plan->morris_r ? plan->morris_r * (d + 1) : 0;
-    const size_t n = plan->n_sobol + nm + plan->n_starts * plan->refine_evals;
+    const size_t rounds = plan->n_explore ? plan->explore_rounds : 0;
+    const size_t n = plan->n_sobol + nm + plan->n_starts * plan->refine_evals + rounds * plan->n_explore;
     run->d = d;
     run->n = n;
     run->n_sobol = plan->n_sobol;
     run->n_morris = nm;
     run->n_starts = plan->n_starts;
+    run->n_explore = plan->n_explore;
+    run->explore_rounds = 0;
     run->u = calloc(n * d, sizeof *run->u);
     run->ev = calloc(n, sizeof *run->ev);
     run->phase = calloc(n, sizeof *run->phase);
@@ -209,10 +225,14 @@ gf_status gf_calibrate_run(const gf_calib_plan *plan, gf_calib_evaluate f, void 
         gf_calib_run_free(run);
         return gf_fail(GF_ENOMEM, "calibration: out of memory (%zu evaluations)", n);
     }
+    const size_t explore0 = gf_calib_explore_index(plan, 0);
     for (size_t i = 0; i < n; ++i) {
-        run->ev[i] = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN}, NAN};
-        run->phase[i] = i < plan->n_sobol ? GF_PHASE_SOBOL : i < plan->n_sobol + nm ? GF_PHASE_MORRIS : GF_PHASE_REFINE;
-        run->start[i] = i < plan->n_sobol + nm ? -1 : (int)((i - plan->n_sobol - nm) / plan->refine_evals);
+        run->ev[i] = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN}, NAN, 0};
+        run->phase[i] = i < plan->n_sobol        ? GF_PHASE_SOBOL
+                        : i < plan->n_sobol + nm ? GF_PHASE_MORRIS
+                        : i < explore0           ? GF_PHASE_REFINE
+                                                 : GF_PHASE_EXPLORE;
+        run->start[i] = run->phase[i] == GF_PHASE_REFINE ? (int)((i - plan->n_sobol - nm) / plan->refine_evals) : -1;
     }
     gf_status st = gf_design_sobol(plan->n_sobol, d, 0, run->u);
     if (!st && nm)
@@ -259,6 +279,63 @@ gf_status gf_calibrate_run(const gf_calib_plan *plan, gf_calib_evaluate f, void 
             s.n_starts = ns;
             s.next_start = 0;
             st = run_threads(&s, refine_thread, plan->threads < ns ? plan->threads : ns);
+        }
+    }
+    for (size_t round = 0; !st && round < rounds; ++round) {
+        /* the box of the accepted evaluations so far (around the best one
+         * when none is accepted), widened; a Sobol design in it */
+        double *lo = run->explore_box, *hi = run->explore_box + GF_SOBOL_MAX_DIM;
+        double prev[2 * GF_SOBOL_MAX_DIM];
+        memcpy(prev, run->explore_box, sizeof prev);
+        const size_t first = explore0 + round * plan->n_explore;
+        size_t nacc = 0, best = (size_t)-1;
+        for (size_t j = 0; j < d; ++j)
+            lo[j] = INFINITY, hi[j] = -INFINITY;
+        for (size_t i = 0; i < first; ++i) {
+            if (!run->ev[i].ok)
+                continue;
+            if (best == (size_t)-1 || run->ev[i].loss < run->ev[best].loss)
+                best = i;
+            if (!run->ev[i].accepted)
+                continue;
+            ++nacc;
+            for (size_t j = 0; j < d; ++j) {
+                lo[j] = fmin(lo[j], run->u[i * d + j]);
+                hi[j] = fmax(hi[j], run->u[i * d + j]);
+            }
+        }
+        if (best == (size_t)-1) {
+            st = gf_fail(GF_EDOM, "calibration: every member failed: nothing to explore around");
+            break;
+        }
+        for (size_t j = 0; j < d; ++j) {
+            if (!nacc)
+                lo[j] = hi[j] = run->u[best * d + j];
+            const double w = fmax(plan->explore_margin * (hi[j] - lo[j]), 2 * plan->step);
+            lo[j] = fmax(0, lo[j] - w);
+            hi[j] = fmin(1, hi[j] + w);
+        }
+        if (round > 0) { /* the last round did not widen the box: the accepted region is sampled */
+            int grew = 0;
+            for (size_t j = 0; j < d; ++j)
+                grew |= lo[j] < prev[j] - plan->tol || hi[j] > prev[GF_SOBOL_MAX_DIM + j] + plan->tol;
+            if (!grew) {
+                memcpy(run->explore_box, prev, sizeof prev);
+                break;
+            }
+        }
+        /* Sobol points after the design's (another part of the sequence) */
+        st = gf_design_sobol(plan->n_explore, d, plan->n_sobol + round * plan->n_explore, run->u + first * d);
+        for (size_t i = 0; !st && i < plan->n_explore; ++i)
+            for (size_t j = 0; j < d; ++j) {
+                double *u = &run->u[(first + i) * d + j];
+                *u = lo[j] + (hi[j] - lo[j]) * *u;
+            }
+        if (!st) {
+            s.next = first;
+            s.design_end = first + plan->n_explore;
+            st = run_threads(&s, design_thread, plan->threads);
+            run->explore_rounds = round + 1;
         }
     }
     pthread_mutex_destroy(&s.lock);
