@@ -970,8 +970,13 @@ static void loss_picture(const calib *k, const gf_calib_run *run, const int *acc
             fprintf(f, "%.9g %.9g %.9g %d\n", value(&c->p[a], run->u[i * d + a]), value(&c->p[b], run->u[i * d + b]),
                     run->ev[i].loss, accepted[i]);
     fclose(f);
+    /* the emulator's contours where it is a bowl around the best point (every
+     * curvature > 0); a saddle says the loss has a curved valley or several,
+     * which the evaluations show better */
+    int bowl = have_em;
+    for (size_t kk = 0; have_em && kk < d; ++kk) bowl &= em->curvature[kk] > 0;
     int contours = 0;
-    if (have_em) {
+    if (bowl) {
         FILE *g = fopen(grid, "w");
         if (g) {
             double *u = malloc(d * sizeof *u);
@@ -1182,6 +1187,10 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
             fprintf(o, "\nemulator (quadratic, %zu evaluations nearest the best, R2 %.3f): curvatures", em.n_fit, em.r2);
             for (size_t kk = 0; kk < d; ++kk) fprintf(o, " %.4g", em.curvature[kk]);
             fprintf(o, "\n");
+            if (em.curvature[d - 1] <= 0)
+                fprintf(o, "the quadratic is not a bowl around the best point (a curvature <= 0): the loss has a "
+                           "curved valley or several; the evaluations that reproduce the observation (above, and the "
+                           "loss pictures) are the answer\n");
             if (em.n_ridge) {
                 fprintf(o, "ridge: %zu direction%s of equal loss (curvature < %g of the largest); along",
                         em.n_ridge, em.n_ridge > 1 ? "s" : "", GF_RIDGE_FRACTION);
