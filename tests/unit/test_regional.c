@@ -1,0 +1,323 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Regional hazard indication (granflow/regional.h): terrain derivatives on
+ * analytic surfaces, the release-area split of a ridge and a pyramid, the
+ * Salm slope factor, alpha-beta on a parabolic profile, the D8 thalweg and
+ * the merge of peak rasters. */
+#include "../gf_test.h"
+
+#include "granflow/constants.h"
+#include "granflow/regional.h"
+
+#define DEG GF_DEG
+
+/* a north-up grid of nx x ny cells of size dx with z = f(x, y), x and y the
+ * cell centres' coordinates relative to the grid's centre */
+static gf_raster grid(int nx, int ny, double dx, double (*f)(double, double, const double *), const double *par)
+{
+    gf_raster r;
+    memset(&r, 0, sizeof r);
+    r.nx = nx;
+    r.ny = ny;
+    r.gt[0] = -0.5 * nx * dx;
+    r.gt[1] = dx;
+    r.gt[3] = 0.5 * ny * dx;
+    r.gt[5] = -dx;
+    r.nodata = -9999;
+    r.wkt = (char *)"";
+    r.z = malloc((size_t)nx * (size_t)ny * sizeof *r.z);
+    assert_non_null(r.z);
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+            r.z[(size_t)j * (size_t)nx + (size_t)i] = f(r.gt[0] + (i + 0.5) * dx, r.gt[3] - (j + 0.5) * dx, par);
+    r.n_valid = (size_t)nx * (size_t)ny;
+    return r;
+}
+
+static double plane(double x, double y, const double *p) { return 1000 + p[0] * x + p[1] * y; }
+static double cone(double x, double y, const double *p) { return 2000 - p[0] * hypot(x, y); }
+static double ridge(double x, double y, const double *p) { (void)y; return 2000 - p[0] * fabs(x); }
+static double pyramid(double x, double y, const double *p) { return 2000 - p[0] * fmax(fabs(x), fabs(y)); }
+
+/* a plane z = a x + b y: Horn's slope atan(|grad z|) and the aspect of -grad z
+ * (clockwise from north) at every interior cell, NAN on the border; a plane
+ * has no roughness (VRM 0) */
+static void plane_gives_its_slope_and_aspect(void **state)
+{
+    (void)state;
+    const double cases[3][4] = {
+        /* a, b, slope, aspect */
+        {-tan(35 * DEG), 0, 35, 90},   /* falls to the east */
+        {0, tan(28 * DEG), 28, 180},   /* rises to the north: faces south */
+        {0.3, 0.4, atan(0.5) / DEG, atan2(-0.3, -0.4) / DEG + 360},
+    };
+    for (int k = 0; k < 3; ++k) {
+        gf_raster r = grid(12, 9, 5, plane, cases[k]);
+        double s[108], a[108], v[108];
+        assert_int_equal(gf_slope_aspect(&r, s, a), GF_SUCCESS);
+        assert_int_equal(gf_vrm(&r, 3, v, NULL), GF_SUCCESS);
+        assert_true(isnan(s[0]) && isnan(a[11]) && isnan(s[107]));
+        for (int j = 1; j < 8; ++j)
+            for (int i = 1; i < 11; ++i) {
+                assert_close(s[j * 12 + i], cases[k][2], 1e-9);
+                assert_close(a[j * 12 + i], cases[k][3], 1e-9);
+                assert_close(v[j * 12 + i], 0, 1e-12);
+            }
+        free(r.z);
+    }
+}
+
+/* a cone z = H - tan(theta) r: plan curvature sin(theta) / r (> 0, flow
+ * diverges), to 2 % at r >= 40 m on a 2 m grid; a ridge's flanks are planes
+ * (no curvature), the ridge line itself rough (VRM > 0) */
+static void cone_has_plan_curvature_sin_theta_over_r(void **state)
+{
+    (void)state;
+    const double k = tan(35 * DEG);
+    gf_raster r = grid(101, 101, 2, cone, &k);
+    double *c = malloc(101 * 101 * sizeof *c);
+    assert_int_equal(gf_plan_curvature(&r, c), GF_SUCCESS);
+    for (int i = 70; i < 100; i += 7) {
+        double x = r.gt[0] + (i + 0.5) * 2, y = r.gt[3] - (50 + 0.5) * 2;
+        double rr = hypot(x, y), want = sin(35 * DEG) / rr;
+        assert_true(fabs(c[50 * 101 + i] - want) <= 0.02 * want);
+    }
+    free(r.z);
+    gf_raster q = grid(21, 21, 5, ridge, &k);
+    double v[441];
+    assert_int_equal(gf_plan_curvature(&q, c), GF_SUCCESS);
+    assert_int_equal(gf_vrm(&q, 3, v, NULL), GF_SUCCESS);
+    assert_close(c[10 * 21 + 5], 0, 1e-12);
+    assert_close(v[10 * 21 + 5], 0, 1e-12);
+    assert_true(v[10 * 21 + 10] > 0.05);
+    free(q.z);
+    free(c);
+}
+
+/* a symmetric ridge (35 deg flanks, north-south crest): two release areas,
+ * the east and west flank, of equal area (the crest's three columns of
+ * mixed aspect split between them), facing 90 and 270 deg; a forest on the
+ * west flank leaves the east one; a 20 deg ridge has none */
+static void ridge_splits_into_its_two_flanks(void **state)
+{
+    (void)state;
+    double k = tan(35 * DEG);
+    gf_raster r = grid(61, 40, 5, ridge, &k);
+    gf_pra_params p;
+    gf_pra_params_default(&p);
+    p.roughness_max = NAN; /* the crest is a ridge line, not rough terrain */
+    p.min_area = 2000;
+    gf_pra_set s;
+    assert_int_equal(gf_pra_delineate(&r, NULL, &p, &s), GF_SUCCESS);
+    assert_int_equal(s.n, 2);
+    /* interior cells 59 x 38, the crest column (slope 0 by symmetry) out */
+    const double flank = 29 * 38 * 25.0;
+    for (int a = 0; a < 2; ++a) {
+        assert_close(s.pra[a].area_m2, flank, 1e-9);
+        assert_close(s.pra[a].slope_deg, 35, 1e-9);
+        assert_close(fabs(s.pra[a].aspect_deg - 180), 90, 1e-9);
+    }
+    gf_verify("analytic ridge", "flank area / expected", s.pra[0].area_m2 / flank, "=", 1, "35 deg ridge, 5 m grid");
+    /* labels: one id per flank */
+    assert_int_equal(s.label[20 * 61 + 5] + s.label[20 * 61 + 55], 3);
+    assert_int_equal(s.label[20 * 61 + 30], 0);
+    unsigned char *forest = calloc(61 * 40, 1);
+    for (int j = 0; j < 40; ++j)
+        for (int i = 0; i < 30; ++i)
+            forest[j * 61 + i] = 1;
+    gf_pra_set_free(&s);
+    assert_int_equal(gf_pra_delineate(&r, forest, &p, &s), GF_SUCCESS);
+    assert_int_equal(s.n, 1);
+    assert_close(s.pra[0].aspect_deg, 90, 1e-9);
+    gf_pra_set_free(&s);
+    free(forest);
+    free(r.z);
+    k = tan(20 * DEG);
+    r = grid(61, 40, 5, ridge, &k);
+    assert_int_equal(gf_pra_delineate(&r, NULL, &p, &s), GF_SUCCESS);
+    assert_int_equal(s.n, 0);
+    gf_pra_set_free(&s);
+    free(r.z);
+}
+
+/* a square pyramid (35 deg faces) splits along its four ridges into four
+ * areas of a quarter each (to 1 %), facing N, E, S, W; the minimum area
+ * drops them all when above a quarter */
+static void pyramid_splits_into_four_faces(void **state)
+{
+    (void)state;
+    const double k = tan(35 * DEG);
+    gf_raster r = grid(81, 81, 2, pyramid, &k);
+    gf_pra_params p;
+    gf_pra_params_default(&p);
+    p.roughness_max = NAN;
+    p.min_area = 500;
+    gf_pra_set s;
+    assert_int_equal(gf_pra_delineate(&r, NULL, &p, &s), GF_SUCCESS);
+    assert_int_equal(s.n, 4);
+    /* interior cells but the two diagonals (157 cells: Horn's slope on a
+     * crest cell is atan(tan 35 / sqrt 2) = 26.3 deg < 28), 4 m2 each */
+    const double quarter = (79.0 * 79.0 - 157) * 4 / 4;
+    double seen[4] = {0, 0, 0, 0};
+    for (size_t a = 0; a < 4; ++a) {
+        assert_true(fabs(s.pra[a].area_m2 / quarter - 1) < 0.01);
+        int q = (int)floor(fmod(s.pra[a].aspect_deg + 45, 360) / 90);
+        seen[q] = 1;
+        assert_true(fabs(s.pra[a].aspect_deg - 90 * q) < 1 || fabs(s.pra[a].aspect_deg - 360) < 1);
+    }
+    assert_close(seen[0] + seen[1] + seen[2] + seen[3], 4, 0);
+    gf_verify("analytic pyramid", "|face area / quarter - 1|", fabs(s.pra[0].area_m2 / quarter - 1), "<", 0.01,
+              "35 deg square pyramid, 2 m grid");
+    gf_pra_set_free(&s);
+    p.min_area = 1.2 * quarter;
+    assert_int_equal(gf_pra_delineate(&r, NULL, &p, &s), GF_SUCCESS);
+    assert_int_equal(s.n, 0);
+    gf_pra_set_free(&s);
+    p.slope_min = 61;
+    assert_int_equal(gf_pra_delineate(&r, NULL, &p, &s), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "0 < min < max <= 90"));
+    gf_pra_set_free(&s);
+    free(r.z);
+}
+
+/* Salm, Burkard and Gubler (1990): f(psi) = 0.291 / (sin psi - 0.202 cos
+ * psi); by hand f(28) = 0.291 / (0.469472 - 0.178355) = 0.99960 and f(45) =
+ * 0.291 / (0.707107 x 0.798) = 0.51571; d0 = (1 m + 0.05 m / 100 m x 300 m)
+ * f(45) = 1.15 x 0.51571 = 0.59306 m */
+static void salm_factor_matches_hand_values(void **state)
+{
+    (void)state;
+    double f;
+    assert_int_equal(gf_salm_slope_factor(28, &f), GF_SUCCESS);
+    assert_close(f, 0.99960, 5e-6);
+    assert_int_equal(gf_salm_slope_factor(45, &f), GF_SUCCESS);
+    assert_close(f, 0.51571, 5e-6);
+    double d0;
+    assert_int_equal(gf_release_depth(1.0, 0.05 / 100, 2300, 2000, 45, &d0), GF_SUCCESS);
+    assert_close(d0, 1.15 * 0.51571, 1e-5);
+    gf_verify("Salm et al. 1990", "f(28 deg)", 0.99960, "=", 0.9996, "hand value");
+    assert_int_equal(gf_salm_slope_factor(10, &f), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "[15, 90]"));
+    assert_int_equal(gf_release_depth(1.0, 0.01, 1000, 2000, 35, &d0), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "negative"));
+    assert_int_equal(gf_release_depth(NAN, 0, 1000, 2000, 35, &d0), GF_EDOM);
+}
+
+/* alpha-beta on the parabola z = z0 - b s + c s^2 (b = tan 40 deg, c = 5e-4
+ * 1/m): the slope is 10 deg at s* = (b - tan 10) / (2c), beta = atan(b - c
+ * s*), alpha = 0.96 beta - 1.4; the line from the top at alpha meets the
+ * profile again at s = (b - tan alpha) / c (the same for alpha -+ 2.3) */
+static void alpha_beta_on_parabola(void **state)
+{
+    (void)state;
+    const double b = tan(40 * DEG), c = 5e-4, z0 = 2500;
+    const size_t n = 3001;
+    double *s = malloc(n * sizeof *s), *z = malloc(n * sizeof *z);
+    for (size_t i = 0; i < n; ++i) {
+        s[i] = 0.5 * (double)i;
+        z[i] = z0 - b * s[i] + c * s[i] * s[i];
+    }
+    gf_alpha_beta_params p;
+    gf_alpha_beta_params_default(&p);
+    gf_alpha_beta ab;
+    assert_int_equal(gf_alpha_beta_profile(n, s, z, &p, &ab), GF_SUCCESS);
+    const double sstar = (b - tan(10 * DEG)) / (2 * c), beta = atan(b - c * sstar) / DEG;
+    assert_close(ab.s_beta, sstar, 1e-6);
+    assert_close(ab.beta, beta, 1e-4);
+    assert_close(ab.alpha, 0.96 * beta - 1.4, 1e-4);
+    const double a[3] = {ab.alpha, ab.alpha - 2.3, ab.alpha + 2.3};
+    for (int m = 0; m < 3; ++m)
+        assert_close(ab.s_alpha[m], (b - tan(a[m] * DEG)) / c, 0.05);
+    assert_true(ab.s_alpha[1] > ab.s_alpha[0] && ab.s_alpha[0] > ab.s_alpha[2]);
+    gf_verify("Lied and Bakkehoi 1980", "beta point error [m]", fabs(ab.s_beta - sstar), "<", 1e-6,
+              "parabolic profile");
+    /* a 10 m bench at 5 deg high on the profile is not the beta point */
+    for (size_t i = 0; i < n; ++i) {
+        const double t = s[i] <= 100 ? s[i] : s[i] <= 110 ? 100 : s[i] - 10;
+        z[i] = z0 - b * t + c * t * t - tan(5 * DEG) * fmin(fmax(s[i] - 100, 0), 10);
+    }
+    assert_int_equal(gf_alpha_beta_profile(n, s, z, &p, &ab), GF_SUCCESS);
+    assert_close(ab.s_beta, sstar + 10, 1e-6);
+    /* a profile that never flattens */
+    for (size_t i = 0; i < n; ++i)
+        z[i] = z0 - s[i];
+    assert_int_equal(gf_alpha_beta_profile(n, s, z, &p, &ab), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "never falls below 10 deg"));
+    free(s);
+    free(z);
+}
+
+/* D8 thalweg: on a plane falling east it runs straight east to the border
+ * in steps of the cell size; in a V-valley it reaches the axis and follows
+ * it down */
+static void thalweg_follows_steepest_descent(void **state)
+{
+    (void)state;
+    const double pe[2] = {-0.5, 0};
+    gf_raster r = grid(30, 20, 5, plane, pe);
+    double *p;
+    size_t n;
+    assert_int_equal(gf_thalweg_d8(&r, 3, 10, &p, &n), GF_SUCCESS);
+    assert_int_equal(n, 27);
+    assert_close(p[4 * (n - 1) + 3], 26 * 5.0, 1e-12);
+    assert_close(p[4 * (n - 1) + 2] - p[2], -0.5 * 26 * 5, 1e-9);
+    free(p);
+    assert_int_equal(gf_thalweg_d8(&r, 30, 10, &p, &n), GF_EDOM);
+    free(r.z);
+}
+
+/* the merge of three rasters equals the cell-by-cell maximum, the count of
+ * values above the threshold and the id of the maximum; NAN is not reached */
+static void merge_is_cellwise_max(void **state)
+{
+    (void)state;
+    enum { N = 1000 };
+    double *f[3];
+    const long ids[3] = {7, 11, 42};
+    srand(52);
+    for (int k = 0; k < 3; ++k) {
+        f[k] = malloc(N * sizeof *f[k]);
+        for (int c = 0; c < N; ++c)
+            f[k][c] = rand() % 5 == 0 ? NAN : 100.0 * rand() / RAND_MAX;
+    }
+    double mx[N];
+    unsigned cnt[N];
+    long who[N];
+    assert_int_equal(gf_merge_max(3, N, (const double *const *)f, ids, 50, mx, cnt, who), GF_SUCCESS);
+    for (int c = 0; c < N; ++c) {
+        double m = NAN;
+        long w = -1;
+        unsigned n = 0;
+        for (int k = 0; k < 3; ++k)
+            if (!isnan(f[k][c])) {
+                if (isnan(m) || f[k][c] > m) {
+                    m = f[k][c];
+                    w = ids[k];
+                }
+                n += f[k][c] > 50;
+            }
+        if (isnan(m))
+            assert_true(isnan(mx[c]));
+        else
+            assert_close(mx[c], m, 0);
+        assert_int_equal(cnt[c], n);
+        assert_int_equal(who[c], w);
+    }
+    assert_int_equal(gf_merge_max(3, N, (const double *const *)f, ids, NAN, mx, cnt, who), GF_EDOM);
+    for (int k = 0; k < 3; ++k)
+        free(f[k]);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(plane_gives_its_slope_and_aspect),
+        cmocka_unit_test(cone_has_plan_curvature_sin_theta_over_r),
+        cmocka_unit_test(ridge_splits_into_its_two_flanks),
+        cmocka_unit_test(pyramid_splits_into_four_faces),
+        cmocka_unit_test(salm_factor_matches_hand_values),
+        cmocka_unit_test(alpha_beta_on_parabola),
+        cmocka_unit_test(thalweg_follows_steepest_descent),
+        cmocka_unit_test(merge_is_cellwise_max),
+    };
+    return gf_run_tests("regional", tests, NULL, NULL);
+}
