@@ -1,11 +1,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The Processing provider "granflow": Avalanche simulation, Path analysis,
-Probability map; its setting "granflow folder" (GRANFLOW_DIR)."""
+Probability map, Back-calculate an event; its setting "granflow folder" (GRANFLOW_DIR)."""
 import os
 
 from qgis.core import QgsProcessingProvider
 from qgis.PyQt.QtGui import QIcon
 
+from .calibration import Calibration
 from .path_analysis import PathAnalysis
 from .probability import ProbabilityMap
 from .runner import SETTING_DIR
@@ -48,5 +49,5 @@ class GranflowProvider(QgsProcessingProvider):
             pass
 
     def loadAlgorithms(self):
-        for alg in (Simulation(), PathAnalysis(), ProbabilityMap()):
+        for alg in (Simulation(), PathAnalysis(), ProbabilityMap(), Calibration()):
             self.addAlgorithm(alg)
