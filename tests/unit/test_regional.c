@@ -247,8 +247,9 @@ static void alpha_beta_on_parabola(void **state)
 }
 
 /* D8 thalweg: on a plane falling east it runs straight east to the border
- * in steps of the cell size; in a V-valley it reaches the axis and follows
- * it down */
+ * in steps of the cell size; a pit ends it unless it is shallower than the
+ * allowed climb (then it climbs out, reaches the border and follows its
+ * level edge) */
 static void thalweg_follows_steepest_descent(void **state)
 {
     (void)state;
@@ -256,12 +257,29 @@ static void thalweg_follows_steepest_descent(void **state)
     gf_raster r = grid(30, 20, 5, plane, pe);
     double *p;
     size_t n;
-    assert_int_equal(gf_thalweg_d8(&r, 3, 10, &p, &n), GF_SUCCESS);
+    assert_int_equal(gf_thalweg_d8(&r, 3, 10, 0, 0, &p, &n), GF_SUCCESS);
     assert_int_equal(n, 27);
     assert_close(p[4 * (n - 1) + 3], 26 * 5.0, 1e-12);
     assert_close(p[4 * (n - 1) + 2] - p[2], -0.5 * 26 * 5, 1e-9);
     free(p);
-    assert_int_equal(gf_thalweg_d8(&r, 30, 10, &p, &n), GF_EDOM);
+    assert_int_equal(gf_thalweg_d8(&r, 30, 10, 0, 0, &p, &n), GF_EDOM);
+    /* a pit 4 m deep (1.5 m below its lower neighbours) ends strict D8 there;
+     * with max_climb 2 m the path climbs out and reaches the border */
+    r.z[10 * 30 + 12] -= 4;
+    assert_int_equal(gf_thalweg_d8(&r, 3, 10, 0, 0, &p, &n), GF_SUCCESS);
+    assert_int_equal(n, 10);
+    free(p);
+    assert_int_equal(gf_thalweg_d8(&r, 3, 10, 2, 30, &p, &n), GF_SUCCESS);
+    /* (then along the level border column until 30 m without a new low) */
+    assert_int_equal(n, 27 + 7);
+    assert_close(p[4 * 26], r.gt[0] + 29.5 * 5, 1e-9);
+    assert_close(p[4 * (n - 1) + 2], p[4 * 26 + 2], 1e-9);
+    for (size_t i = 1; i < n; ++i)
+        assert_true(p[4 * i + 3] > p[4 * (i - 1) + 3]);
+    free(p);
+    assert_int_equal(gf_thalweg_d8(&r, 3, 10, 1, 50, &p, &n), GF_SUCCESS);
+    assert_int_equal(n, 10);
+    free(p);
     free(r.z);
 }
 

@@ -164,12 +164,20 @@ gf_status gf_alpha_beta_profile(size_t n, const double *s, const double *z, cons
                                 gf_alpha_beta *out);
 
 /* The steepest-descent thalweg on dem from cell (col, row): D8, each step
- * to the neighbour of the steepest drop (drop / distance), until no
- * neighbour is lower (a pit or a flat), the grid's border or NODATA.  On
- * success *xyzs (malloc'd, free() it) holds *n points of x y z s (s the
- * horizontal distance from the start).  Refused: a start outside the grid
- * or on NODATA. */
-gf_status gf_thalweg_d8(const gf_raster *dem, int col, int row, double **xyzs, size_t *n);
+ * to the neighbour of the steepest drop (drop / distance).  Where no
+ * neighbour is lower (a pit or a flat of the DEM) the path goes on to the
+ * lowest neighbour it has not visited as long as that stays within
+ * max_climb [m] of the lowest point reached so far (a pit shallower than
+ * max_climb is walked through, a level valley floor followed, ties keeping
+ * the last step's direction; 0: strict D8, the path ends in the first pit),
+ * and ends when it has gone max_flat [m] along the path without a new
+ * lowest point (max_flat 0: at the first step that does not descend), at
+ * the grid's border or NODATA.  On success *xyzs (malloc'd, free() it) holds *n points of x y z
+ * s (s the horizontal distance from the start, strictly increasing).
+ * Refused: a start outside the grid or on NODATA, max_climb or max_flat < 0
+ * or not finite. */
+gf_status gf_thalweg_d8(const gf_raster *dem, int col, int row, double max_climb, double max_flat, double **xyzs,
+                       size_t *n);
 
 /* ---- merge of many releases' peak rasters ----------------------------- */
 

@@ -143,7 +143,17 @@ gf_status gf_alpha_beta_profile(size_t n, const double *s, const double *z, cons
     return GF_SUCCESS;
 }
 
-gf_status gf_thalweg_d8(const gf_raster *dem, int col, int row, double **xyzs, size_t *n)
+/* is cell c one of the path's m cells? */
+static int visited(const size_t *cell, size_t m, size_t c)
+{
+    for (size_t k = m; k-- > 0;)
+        if (cell[k] == c)
+            return 1;
+    return 0;
+}
+
+gf_status gf_thalweg_d8(const gf_raster *dem, int col, int row, double max_climb, double max_flat, double **xyzs,
+                       size_t *n)
 {
     if (!dem || !dem->z || !xyzs || !n)
         return gf_fail(GF_EINVAL, "thalweg: no DEM or output given");
@@ -154,39 +164,59 @@ gf_status gf_thalweg_d8(const gf_raster *dem, int col, int row, double **xyzs, s
         return gf_fail(GF_EDOM, "thalweg: start cell (%d, %d) outside the grid of %d x %d cells", col, row, nx, ny);
     if (!isfinite(dem->z[(size_t)row * (size_t)nx + (size_t)col]))
         return gf_fail(GF_EDOM, "thalweg: start cell (%d, %d) is NODATA", col, row);
+    if (!(max_climb >= 0 && isfinite(max_climb)) || !(max_flat >= 0 && isfinite(max_flat)))
+        return gf_fail(GF_EDOM, "thalweg: max_climb %g m and max_flat %g m must be finite and >= 0", max_climb,
+                       max_flat);
     double dx = fabs(dem->gt[1]), dy = fabs(dem->gt[5]);
     size_t cap = 256, m = 0;
     double *p = malloc(4 * cap * sizeof *p);
-    if (!p)
+    size_t *cell = malloc(cap * sizeof *cell);
+    if (!p || !cell) {
+        free(p);
+        free(cell);
         return gf_fail(GF_ENOMEM, "thalweg: %zu points", cap);
-    double s = 0;
+    }
+    double s = 0, zlow = INFINITY, s_low = 0;
+    int pa = 0, pb = 0; /* the last step's direction */
     size_t nc = (size_t)nx * (size_t)ny;
     for (;;) {
         size_t c = (size_t)row * (size_t)nx + (size_t)col;
         if (m == cap) {
             double *q = realloc(p, 8 * cap * sizeof *p);
-            if (!q) {
-                free(p);
+            size_t *r = q ? realloc(cell, 2 * cap * sizeof *cell) : NULL;
+            if (!q || !r) {
+                free(q ? q : p);
+                free(cell);
                 return gf_fail(GF_ENOMEM, "thalweg: %zu points", 2 * cap);
             }
             p = q;
+            cell = r;
             cap *= 2;
         }
         p[4 * m] = dem->gt[0] + (col + 0.5) * dem->gt[1];
         p[4 * m + 1] = dem->gt[3] + (row + 0.5) * dem->gt[5];
         p[4 * m + 2] = dem->z[c];
         p[4 * m + 3] = s;
+        cell[m] = c;
         ++m;
-        if (m > nc) /* strictly descending: cannot happen */
+        if (dem->z[c] < zlow) {
+            zlow = dem->z[c];
+            s_low = s;
+        }
+        if (m >= nc || s - s_low > max_flat)
             break;
-        double best = 0, bd = 0;
-        int bi = 0, bj = 0;
+        /* the steepest drop; in a pit (no lower neighbour) the lowest
+         * neighbour not on the path, while it stays within max_climb of the
+         * lowest point reached */
+        double best = 0, bd = 0, lowest = INFINITY, ld = 0;
+        int bi = -1, bj = -1, li = -1, lj = -1;
         for (int b = -1; b <= 1; ++b)
             for (int a = -1; a <= 1; ++a) {
                 int i = col + a, j = row + b;
                 if ((!a && !b) || i < 0 || j < 0 || i >= nx || j >= ny)
                     continue;
-                double v = dem->z[(size_t)j * (size_t)nx + (size_t)i];
+                size_t e = (size_t)j * (size_t)nx + (size_t)i;
+                double v = dem->z[e];
                 if (!isfinite(v))
                     continue;
                 double d = hypot(a * dx, b * dy), g = (dem->z[c] - v) / d;
@@ -196,13 +226,29 @@ gf_status gf_thalweg_d8(const gf_raster *dem, int col, int row, double **xyzs, s
                     bi = i;
                     bj = j;
                 }
+                /* ties (a level floor) keep the last step's direction */
+                int keep = v == lowest && a == pa && b == pb;
+                if (max_climb > 0 && (v < lowest || keep) && v - zlow <= max_climb && !visited(cell, m, e)) {
+                    lowest = v;
+                    ld = d;
+                    li = i;
+                    lj = j;
+                }
             }
-        if (best <= 0)
-            break;
+        if (bi < 0 || visited(cell, m, (size_t)bj * (size_t)nx + (size_t)bi)) {
+            if (li < 0)
+                break;
+            bi = li;
+            bj = lj;
+            bd = ld;
+        }
+        pa = bi - col;
+        pb = bj - row;
         col = bi;
         row = bj;
         s += bd;
     }
+    free(cell);
     *xyzs = p;
     *n = m;
     return GF_SUCCESS;
