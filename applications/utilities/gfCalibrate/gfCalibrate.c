@@ -7,6 +7,7 @@
  * doc/guide/back-calculation.md).
  *
  *   gfCalibrate [-np N] [-dict FILE] [-out DIR] CASE
+ *   gfCalibrate -run "V1 ... Vd" [-dict FILE] -out DIR CASE
  *   gfCalibrate -observe RUN OUTDIR [-threshold KPA] [-shift CELLS] [-runoutShift M]
  *   gfCalibrate -version | -help
  *
@@ -25,13 +26,21 @@
  *   summary.txt      the verdict, the best set, the credible ranges, the
  *                    ridge, the sensitivities, the evaluations per minute
  *   parameters.csv   per parameter: best, credible range, design range
- *   best/            the best evaluation's case (its results, ready to run again)
+ *   best/            the best evaluation's case (its results, ready to run again),
+ *                    with its report maps and the observed outline and
+ *                    runout point drawn on them (postProcessing/hazardMaps/report/)
  *   loss_A_B.png     the loss over each pair of parameters with the ridge
  *   bestOutline.tif  the best run against the observation per pixel:
  *                    1 both affected, 2 simulated only, 3 observed only
  * The exit status is 0 when the observation is reached, 3 when no
  * evaluation reproduces it (unreachable: reported, never a silent best
  * guess), 1 or 2 on errors.
+ *
+ * -run makes one run of CASE in DIR (its own solver process) with the
+ * dictionary's parameters at the values given, in the dictionary's order
+ * (the "event" of a twin experiment: gfCalibrate -run "0.20 1.15" -out
+ * EVENT CASE, then -observe EVENT); the dictionary's observations are not
+ * read.
  *
  * -observe makes the observations of a run (a twin experiment, or a
  * documented event re-made from a run): RUN's peak pressure above the
@@ -42,6 +51,7 @@
  * M metres along the path (noise on the observation).
  */
 #define _GNU_SOURCE
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -631,6 +641,48 @@ static size_t n_design(const calib *k)
     return k->c->plan.n_sobol + (k->c->plan.morris_r ? k->c->plan.morris_r * (k->c->d + 1) : 0);
 }
 
+/* the time folders of a run but 0/ (its written fields) removed */
+static void remove_times(const char *m)
+{
+    DIR *dir = opendir(m);
+    if (!dir) return;
+    struct dirent *de;
+    while ((de = readdir(dir))) {
+        double t;
+        if (strcmp(de->d_name, "0") == 0 || !gf_parse_number(de->d_name, &t)) continue;
+        char *f = cat(m, de->d_name);
+        char *rm[] = {"rm", "-rf", f, NULL};
+        run_prog(rm, NULL);
+        free(f);
+    }
+    closedir(dir);
+}
+
+/* a member folder m: the template's copy with the parameters' values x
+ * [d] written into its dictionaries; 0, or 1 with the reason */
+static int make_member(const calib *k, const char *m, const double *x, char *why, size_t wsize)
+{
+    const config *c = k->c;
+    char *rm[] = {"rm", "-rf", (char *)m, NULL}, *cp[] = {"cp", "-a", k->templ, (char *)m, NULL};
+    if (run_prog(rm, NULL) || run_prog(cp, NULL)) die("cannot make the member folder %s", m);
+    for (size_t j = 0; j < c->d; ++j) {
+        const param *p = &c->p[j];
+        char text[2048], *file;
+        if (p->release) {
+            snprintf(text, sizeof text, "\n// gfCalibrate\nfactor %.17g;\n", x[j]);
+            file = cat(m, "system/releaseDict");
+        } else {
+            override_text(p->entry, x[j], text, sizeof text);
+            file = cat(m, p->file);
+        }
+        const int r = append(file, text);
+        if (r) snprintf(why, wsize, "cannot write %s", file);
+        free(file);
+        if (r) return 1;
+    }
+    return 0;
+}
+
 /* does an evaluation reproduce the observation (the acceptance criteria)? */
 static int meets(const calib *k, const gf_calib_eval *e)
 {
@@ -650,38 +702,14 @@ static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf
     member_name(k, index, m, sizeof m);
     int resumed = read_result(m, u, d, e);
     if (!resumed) {
-        /* the member: the template's copy with its parameters */
-        char *rm[] = {"rm", "-rf", m, NULL}, *cp[] = {"cp", "-a", k->templ, m, NULL};
-        if (run_prog(rm, NULL) || run_prog(cp, NULL)) die("cannot make the member folder %s", m);
-        int bad = 0;
-        for (size_t j = 0; j < d && !bad; ++j) {
-            const param *p = &c->p[j];
-            char text[2048], *file;
-            if (p->release) {
-                snprintf(text, sizeof text, "\n// gfCalibrate\nfactor %.17g;\n", value(p, u[j]));
-                file = cat(m, "system/releaseDict");
-            } else {
-                override_text(p->entry, value(p, u[j]), text, sizeof text);
-                file = cat(m, p->file);
-            }
-            if (append(file, text)) {
-                snprintf(why, sizeof why, "cannot write %s", file);
-                bad = 1;
-            }
-            free(file);
-        }
+        double x[MAXP];
+        for (size_t j = 0; j < d; ++j) x[j] = value(&c->p[j], u[j]);
+        const int bad = make_member(k, m, x, why, sizeof why);
         int ok = 0;
         if (!bad && gf_workers_run(k->pool, m, &ok, why, sizeof why)) die("%s", gf_error_detail());
         *e = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN}, NAN, 0};
         if (ok && score(k, m, e, why, sizeof why) != 0) e->ok = 0;
-        /* keep the logs, rasters and tables; the fields go */
-        char *t = NULL;
-        if (asprintf(&t, "find '%s' -mindepth 1 -maxdepth 1 -type d -regex '.*/[0-9.e+-]+' ! -name 0 -exec rm -rf {} +",
-                     m) > 0 && !strchr(m, '\'')) {
-            char *sh[] = {"sh", "-c", t, NULL};
-            run_prog(sh, NULL);
-        }
-        free(t);
+        remove_times(m); /* keep the logs, rasters and tables; the fields go */
         write_result(m, u, d, e);
         if (!e->ok) {
             char *f = cat(m, "failure");
@@ -1136,6 +1164,30 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
     if (run_prog(cp, NULL)) fprintf(stderr, "%s: cannot copy %s to %s\n", prog, bm, bestdir);
     char *cmp = cat(k->dir, "bestOutline.tif");
     write_outline_comparison(k, bm, cmp);
+    /* the best run's report maps with the observed outline and runout point
+     * (gfReportMaps -observed): best/postProcessing/hazardMaps/report/ */
+    {
+        char *obs = NULL, *olp = NULL, *ptp = NULL;
+        if (c->outline) olp = c->outline[0] == '/' ? strdup(c->outline) : cat(k->casedir, c->outline);
+        if (c->runout_point) ptp = c->runout_point[0] == '/' ? strdup(c->runout_point) : cat(k->casedir, c->runout_point);
+        if (asprintf(&obs, "%s,%s", olp ? olp : "", ptp ? ptp : "") < 0) die("out of memory");
+        char *log = cat(k->dir, "log.gfReportMaps");
+        char *rmaps[8];
+        int a = 0;
+        rmaps[a++] = "gfReportMaps";
+        if (olp || ptp) {
+            rmaps[a++] = "-observed";
+            rmaps[a++] = obs;
+        }
+        rmaps[a++] = "-title";
+        rmaps[a++] = "best run of the back-calculation";
+        rmaps[a++] = bestdir;
+        rmaps[a] = NULL;
+        unlink(log);
+        if (run_prog(rmaps, log) != 0)
+            fprintf(stderr, "%s: the best run's report maps failed (%s); its rasters are in %s\n", prog, log, bestdir);
+        free(obs), free(olp), free(ptp), free(log);
+    }
 
     for (size_t a = 0; a < d; ++a)
         for (size_t b = a + 1; b < d; ++b) loss_picture(k, run, accepted, &em, have_em, a, b, best);
@@ -1213,7 +1265,9 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
         } else if (run->n_morris) {
             fprintf(o, "\nsensitivity: not computed (a Morris member failed)\n");
         }
-        fprintf(o, "\noutputs: %s/{evaluations.csv,parameters.csv,best/,bestOutline.tif,loss_*.png}\n", k->dir);
+        fprintf(o, "\noutputs: %s/{evaluations.csv,parameters.csv,best/,bestOutline.tif,loss_*.png}; the best run's "
+                   "maps with the observation: best/postProcessing/hazardMaps/report/\n",
+                k->dir);
     }
     fclose(f);
     free(loss), free(jac), free(rerr), free(idx), free(accepted), free(uu), free(csv), free(bestdir), free(cmp),
@@ -1222,12 +1276,55 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
     return verdict.verdict == GF_REACHABLE ? 0 : 3;
 }
 
+/* -run "V1 ... Vd": one run of the case with the parameters at these values
+ * (their order: the dictionary's), in the folder out, by its own solver
+ * process (a twin experiment's "event", or a set to look at) */
+static int run_one(const char *casedir, const config *c, const char *values, const char *out)
+{
+    double x[MAXP];
+    size_t n = 0;
+    char *buf = strdup(values), *save = NULL;
+    for (char *t = strtok_r(buf, " ,", &save); t; t = strtok_r(NULL, " ,", &save)) {
+        if (n == c->d) die("-run \"%s\": more values than the %zu parameters of %s", values, c->d, c->path);
+        if (!gf_parse_number(t, &x[n]) || !isfinite(x[n])) die("-run: '%s' is not a number", t);
+        ++n;
+    }
+    free(buf);
+    if (n != c->d) die("-run \"%s\": %zu values for the %zu parameters of %s (in its order)", values, n, c->d, c->path);
+    observation none;
+    memset(&none, 0, sizeof none);
+    none.s_runout = NAN;
+    calib k;
+    memset(&k, 0, sizeof k);
+    k.c = c;
+    k.o = &none;
+    k.casedir = casedir;
+    if (asprintf(&k.templ, "%s.template", out) < 0) die("out of memory");
+    char *rm[] = {"rm", "-rf", k.templ, NULL};
+    run_prog(rm, NULL);
+    make_template(&k);
+    char why[2048] = "";
+    if (make_member(&k, out, x, why, sizeof why)) die("%s", why);
+    run_prog(rm, NULL);
+    printf("gfCalibrate -run: %s with", out);
+    for (size_t j = 0; j < c->d; ++j) printf(" %s %.9g", c->p[j].name, x[j]);
+    printf("\n");
+    char *log = cat(out, "log.faGranularFlowFoam");
+    char *sv[] = {"faGranularFlowFoam", "-case", (char *)out, NULL};
+    const int st = run_prog(sv, log);
+    if (st) die("faGranularFlowFoam -case %s failed (exit status %d; %s)", out, st, log);
+    free(log);
+    free(k.templ);
+    return 0;
+}
+
 /*------------------------------------------------------------------------- main --*/
 
 static void usage(int st)
 {
     fprintf(st ? stderr : stdout,
             "usage: gfCalibrate [-np N] [-dict FILE] [-out DIR] CASE\n"
+            "       gfCalibrate -run \"V1 ... Vd\" [-dict FILE] -out DIR CASE\n"
             "       gfCalibrate -observe RUN OUTDIR [-threshold KPA] [-shift CELLS] [-runoutShift M]\n"
             "       gfCalibrate -version\n"
             "Back-calculates the parameters of system/calibrationDict from the observations there\n"
@@ -1244,7 +1341,7 @@ int main(int argc, char **argv)
     if (argc > 1 && (strcmp(argv[1], "-help") == 0 || strcmp(argv[1], "--help") == 0)) usage(0);
     if (argc > 1 && strcmp(argv[1], "-observe") == 0) return observe(argc, argv);
     long np = sysconf(_SC_NPROCESSORS_ONLN);
-    const char *dictp = NULL, *out = NULL, *casedir = NULL;
+    const char *dictp = NULL, *out = NULL, *casedir = NULL, *runvalues = NULL;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "-np") == 0 && i + 1 < argc) {
             double v;
@@ -1254,6 +1351,8 @@ int main(int argc, char **argv)
             dictp = argv[++i];
         } else if (strcmp(argv[i], "-out") == 0 && i + 1 < argc) {
             out = argv[++i];
+        } else if (strcmp(argv[i], "-run") == 0 && i + 1 < argc) {
+            runvalues = argv[++i];
         } else if (argv[i][0] == '-') {
             fprintf(stderr, "%s: unknown option %s\n", prog, argv[i]);
             usage(2);
@@ -1264,6 +1363,7 @@ int main(int argc, char **argv)
         }
     }
     if (!casedir) usage(2);
+    if (runvalues && !out) die("-run needs -out DIR: the run's folder");
     char *casereal = realpath(casedir, NULL);
     if (!casereal) die("%s: %s", casedir, strerror(errno));
     char *dp = dictp ? strdup(dictp) : cat(casereal, "system/calibrationDict");
@@ -1271,6 +1371,7 @@ int main(int argc, char **argv)
     read_config(dp, &c);
     GDALAllRegister();
     observation o;
+    if (runvalues) return run_one(casereal, &c, runvalues, out);
     read_observation(casereal, &c, &o);
 
     calib k;

@@ -110,7 +110,9 @@ static void write_geometry(FILE* out, OGRGeometryH g)
     } else if (t == wkbLineString) {
         fprintf(out, ">\n");
         write_points(out, g);
-    } else if (t == wkbMultiPolygon || t == wkbMultiLineString || t == wkbGeometryCollection) {
+    } else if (t == wkbPoint) {
+        write_points(out, g); /* a point: one line, no segment header */
+    } else if (t == wkbMultiPolygon || t == wkbMultiLineString || t == wkbMultiPoint || t == wkbGeometryCollection) {
         const int n = OGR_G_GetGeometryCount(g);
         for (int k = 0; k < n; ++k)
             write_geometry(out, OGR_G_GetGeometryRef(g, k));
@@ -139,7 +141,8 @@ static int vector_to_gmt(const char* in, const char* outName)
         GDALClose(ds);
         return 1;
     }
-    fprintf(out, "# @VGMT1.0 %s\n# FEATURE_DATA\n", polygons ? "@GPOLYGON" : "@GLINESTRING");
+    const int points = t == wkbPoint || t == wkbMultiPoint;
+    fprintf(out, "# @VGMT1.0 %s\n# FEATURE_DATA\n", polygons ? "@GPOLYGON" : points ? "@GPOINT" : "@GLINESTRING");
     OGR_L_ResetReading(layer);
     OGRFeatureH f;
     while ((f = OGR_L_GetNextFeature(layer)) != NULL) {
