@@ -251,7 +251,6 @@ typedef struct frag_stat {
     size_t cells;
     double slope, z, ex, ny, x, y, zmax;
     size_t top;
-    int keep;
 } frag_stat;
 
 static int pra_cmp(const void *x, const void *y)
@@ -259,7 +258,9 @@ static int pra_cmp(const void *x, const void *y)
     const gf_pra *a = x, *b = y;
     if (a->z_max != b->z_max)
         return a->z_max > b->z_max ? -1 : 1;
-    return a->top_row * 1000003L + a->top_col < b->top_row * 1000003L + b->top_col ? -1 : 1;
+    if (a->top_row != b->top_row)
+        return a->top_row < b->top_row ? -1 : 1;
+    return (a->top_col > b->top_col) - (a->top_col < b->top_col);
 }
 
 gf_status gf_pra_delineate(const gf_raster *dem, const unsigned char *excluded, const gf_pra_params *p,
@@ -345,7 +346,8 @@ gf_status gf_pra_delineate(const gf_raster *dem, const unsigned char *excluded, 
     sector = malloc((nf + 1) * sizeof *sector);
     parent = malloc((nf + 1) * sizeof *parent);
     fs = calloc(nf + 1, sizeof *fs);
-    edges = malloc((4 * nc + 1) * sizeof *edges); /* up to two per neighbour pair */
+    size_t cap_edges = 1024; /* grows: only borders of small fragments are kept */
+    edges = malloc(cap_edges * sizeof *edges);
     if (!sector || !parent || !fs || !edges) {
         st = gf_fail(GF_ENOMEM, "release areas: %zu fragments", nf);
         goto done;
@@ -375,6 +377,15 @@ gf_status gf_pra_delineate(const gf_raster *dem, const unsigned char *excluded, 
                     size_t b = find(parent, frag[nb[k]]);
                     if (a == b || sector_gap(sector[a], sector[b], nsec) > p->merge_sectors)
                         continue;
+                    if (ne + 2 > cap_edges) {
+                        edge *more = realloc(edges, 2 * cap_edges * sizeof *edges);
+                        if (!more) {
+                            st = gf_fail(GF_ENOMEM, "release areas: %zu fragment borders", 2 * cap_edges);
+                            goto done;
+                        }
+                        edges = more;
+                        cap_edges *= 2;
+                    }
                     if (fs[a].cells < min_cells)
                         edges[ne++] = (edge){a, b};
                     if (fs[b].cells < min_cells)
