@@ -127,15 +127,16 @@ class Calibration(GranflowAlgorithm):
             QgsProcessingParameterFile.Folder))
         self.addParameter(QgsProcessingParameterFile(
             'DICT', 'Calibration dictionary (system/calibrationDict format; given: it replaces the parameters '
-            'below but the workers and the output folder)', QgsProcessingParameterFile.File, optional=True))
+            'below but the workers and the output folder)', QgsProcessingParameterFile.File, '', None, True,
+            'All files (*)'))   # (QGIS's default filter *.* refuses a name without a dot: calibrationDict)
         self.addParameter(QgsProcessingParameterString(
             'FRICTION_ENTRY', 'Friction parameter: the entry calibrated (a/b/c)', 'samosATCoeffs/mu'))
         self.advanced(QgsProcessingParameterString(
             'FRICTION_FILE', 'Friction parameter: the dictionary of the case that holds it',
             'constant/granularProperties'))
         self.addParameter(QgsProcessingParameterRange(
-            'FRICTION_RANGE', 'Friction parameter: its range (lo < hi)', QgsProcessingParameterNumber.Double,
-            [0.1, 0.35]))
+            'FRICTION_RANGE', 'Friction parameter: its range (lo < hi; without DICT required)',
+            QgsProcessingParameterNumber.Double, '0.1,0.35', True))
         self.addParameter(QgsProcessingParameterRange(
             'RELEASE_RANGE', 'Release thickness factor: its range (empty: not calibrated)',
             QgsProcessingParameterNumber.Double, None, True))
@@ -315,13 +316,14 @@ class Calibration(GranflowAlgorithm):
         return os.path.abspath(path.split('|')[0])
 
     def dictionary(self, parameters, context, feedback):
-        """The calibrationDict text of the parameters, and {dictionary key:
-        the algorithm's parameter} for gfCalibrate's messages."""
+        """The calibrationDict text of the parameters, and [(gfCalibrate's
+        words, the algorithm's parameter)] for its messages (explain)."""
         entry, name = self.friction_name(parameters, context)
         ffile = self.parameterAsString(parameters, 'FRICTION_FILE', context).strip()
         lo, hi = self.range_of(parameters, 'FRICTION_RANGE', context, 'the range of {}'.format(name))
         release = self.range_of(parameters, 'RELEASE_RANGE', context, 'the range of the release factor', 0, 100)
-        keys = {name: 'FRICTION_RANGE', entry: 'FRICTION_ENTRY', ffile: 'FRICTION_FILE'}
+        # gfCalibrate's words -> the parameter, the most specific first
+        keys = [(entry, 'FRICTION_ENTRY')]
         lines = ['FoamFile { version 2.0; format ascii; class dictionary; object calibrationDict; }',
                  '// written by the granflow QGIS plugin (Back-calculate an event)',
                  'parameters', '{',
@@ -330,7 +332,6 @@ class Calibration(GranflowAlgorithm):
                                                                        num(lo), num(hi))]
         if release is not None:
             lines.append('    release {{ release factor; range ({} {}); }}'.format(num(release[0]), num(release[1])))
-            keys['release'] = 'RELEASE_RANGE'
         lines.append('}')
         obs = []
         for key, dkey in OBSERVATIONS:
@@ -344,14 +345,17 @@ class Calibration(GranflowAlgorithm):
                 else:
                     path = self.vector_file(parameters, key, context, feedback)
                 obs.append('{} {};'.format(dkey, dict_string(key, path)))
-            keys['observations/' + dkey] = key
+            keys += [('observations/' + dkey, key), ('observation ' + dkey, key)]
         lines.append('observations {{ {} }}'.format(' '.join(obs)))
         sections = self.numbers(parameters, context, 1 + (release is not None))
         for section in SECTIONS:
             if section in sections:
-                lines.append('{} {{ {} }}'.format(section, ' '.join('{} {};'.format(k, v) for k, v in sections[section])))
-        for key, section, dkey, *_ in NUMBERS:
-            keys['{}/{}'.format(section, dkey)] = key
+                entries = ' '.join('{} {};'.format(k, v) for k, v in sections[section])
+                lines.append('{} {{ {} }}'.format(section, entries))
+        keys += [('{}/{}'.format(section, dkey), key) for key, section, dkey, *_ in NUMBERS]
+        if release is not None:
+            keys.append(('release', 'RELEASE_RANGE'))
+        keys += [(name, 'FRICTION_RANGE'), (ffile, 'FRICTION_FILE')]
         return '\n'.join(lines) + '\n', keys
 
     # ---- the run -------------------------------------------------------------------
@@ -361,7 +365,7 @@ class Calibration(GranflowAlgorithm):
         folder = self.output_folder(parameters, context, case)
         made = not os.path.exists(folder)
         had_dict = os.path.exists(os.path.join(folder, 'calibrationDict'))
-        keys = {}
+        keys = []
         if self.has_value(parameters, 'DICT'):
             dict_path = os.path.abspath(self.parameterAsFile(parameters, 'DICT', context))
         else:
@@ -480,13 +484,13 @@ def results(folder):
 
 def explain(why, dict_path, keys):
     """gfCalibrate's refusal in the algorithm's words: the dictionary the
-    algorithm wrote named as such, the parameter behind the dictionary key
-    it names first."""
+    algorithm wrote named as such, and the parameter behind the first
+    dictionary key of keys ([(words, parameter)], the most specific
+    first) that it names."""
     if not keys:
         return why
     why = why.replace(dict_path, 'the dictionary written from the parameters ({})'.format(dict_path))
-    found = [(why.find(k), k) for k in keys if re.search(r'(^|[\s:/(])' + re.escape(k) + r'($|[\s:;,)])', why)]
-    if found:
-        key = keys[min(found)[1]]
-        why = '{}: {}'.format(key, why)
+    for words, key in keys:
+        if re.search(r'(^|[\s:/(])' + re.escape(words) + r'($|[\s:;,)])', why):
+            return '{}: {}'.format(key, why)
     return why
