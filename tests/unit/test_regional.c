@@ -93,6 +93,42 @@ static void cone_has_plan_curvature_sin_theta_over_r(void **state)
     free(c);
 }
 
+/* wind shelter (Winstral et al. 2002): on level ground a wall 10 m high
+ * across the grid shelters a cell d metres downwind by atan(10 / d) (north
+ * wind, the wall to its north), leaves a cell upwind of it at 0 (level
+ * ground in the sector) and one farther than dmax at 0 */
+static double wall(double x, double y, const double *p)
+{
+    (void)x;
+    return fabs(y - p[0]) < 2.5 ? 1010 : 1000;
+}
+
+static void wind_shelter_behind_a_wall(void **state)
+{
+    (void)state;
+    const double yw = 0; /* the wall: the row of cell centres at y = 0 */
+    gf_raster r = grid(21, 41, 5, wall, &yw);
+    double *sx = malloc(21 * 41 * sizeof *sx);
+    assert_int_equal(gf_wind_shelter(&r, 0, 30, 100, sx), GF_SUCCESS);
+    /* the wall row: y = 102.5 - (j + 0.5) 5 = 0 at row 20 */
+    int jw = 20;
+    assert_close(r.z[jw * 21 + 10], 1010, 0);
+    for (int k = 1; k <= 6; ++k)
+        assert_close(sx[(jw + k) * 21 + 10], atan(10.0 / (5 * k)) / DEG, 1e-9);
+    assert_close(sx[(jw - 3) * 21 + 10], 0, 1e-12);
+    assert_int_equal(gf_wind_shelter(&r, 0, 30, 50, sx), GF_SUCCESS);
+    assert_close(sx[(jw + 10) * 21 + 10], atan(10.0 / 50) / DEG, 1e-9);
+    assert_close(sx[(jw + 11) * 21 + 10], 0, 1e-12);
+    /* a south wind: the cells south of the wall are upwind of it */
+    assert_int_equal(gf_wind_shelter(&r, 180, 30, 100, sx), GF_SUCCESS);
+    assert_close(sx[(jw + 2) * 21 + 10], 0, 1e-12);
+    assert_close(sx[(jw - 2) * 21 + 10], atan(10.0 / 10) / DEG, 1e-9);
+    assert_int_equal(gf_wind_shelter(&r, 400, 30, 100, sx), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "[0, 360]"));
+    free(sx);
+    free(r.z);
+}
+
 /* a symmetric ridge (35 deg flanks, north-south crest): two release areas,
  * the east and west flank, of equal area (the crest's three columns of
  * mixed aspect split between them), facing 90 and 270 deg; a forest on the
@@ -330,6 +366,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(plane_gives_its_slope_and_aspect),
         cmocka_unit_test(cone_has_plan_curvature_sin_theta_over_r),
+        cmocka_unit_test(wind_shelter_behind_a_wall),
         cmocka_unit_test(ridge_splits_into_its_two_flanks),
         cmocka_unit_test(pyramid_splits_into_four_faces),
         cmocka_unit_test(salm_factor_matches_hand_values),

@@ -8,13 +8,14 @@
  *                  [-roughnessWindow N] [-curvature C] [-sectors N]
  *                  [-forest FILE] [-out DIR] [-format gpkg|shp]
  *                  [-d0 D0STAR [-gradient G -zref Z]] [-alphaBeta [-maxClimb H] [-maxFlat L]]
- *                  [-compare REL]
+ *                  [-wind FROM[,HALF[,DMAX]]] [-compare REL]
  *   gfReleaseAreas -help | -version
  *
  * Writes DIR/releaseAreas.gpkg (or .shp): one polygon per area with id,
  * area_m2, slope_deg, altitude_m, aspect_deg (and d0_m with -d0);
  * DIR/releaseAreas.csv, the same table; DIR/releaseAreas_labels.tif, the
- * area of every cell (0: none); with -alphaBeta DIR/alphaBeta.csv (the beta
+ * area of every cell (0: none); with -wind DIR/windShelter.tif (and each
+ * area's mean in the table); with -alphaBeta DIR/alphaBeta.csv (the beta
  * point, alpha and the runout points of alpha and alpha -+ one standard
  * deviation of each area) and DIR/thalwegs.csv (each area's steepest-descent
  * thalweg from its highest cell).  Prints shell-readable lines (name=value):
@@ -47,7 +48,8 @@ static void usage(FILE *f)
             "usage: gfReleaseAreas -dem DEM [-slope MIN,MAX] [-minArea A] [-roughness VRM|none]\n"
             "                      [-roughnessWindow N] [-curvature C] [-sectors N] [-forest FILE]\n"
             "                      [-out DIR] [-format gpkg|shp] [-d0 D0STAR [-gradient G -zref Z]]\n"
-            "                      [-alphaBeta [-maxClimb H] [-maxFlat L]] [-compare REL]\n"
+            "                      [-alphaBeta [-maxClimb H] [-maxFlat L]] [-wind FROM[,HALF[,DMAX]]]\n"
+            "                      [-compare REL]\n"
             "       gfReleaseAreas -help | -version\n\n"
             "The potential release areas of a DEM (doc/theory/regional.md): cells of slope\n"
             "in [MIN, MAX] deg (default 28,60; Horn's method), vector ruggedness (VRM, window\n"
@@ -60,7 +62,10 @@ static void usage(FILE *f)
             "per m (default 0), Z needed when G is not 0.  -alphaBeta: each area's thalweg,\n"
             "beta point and alpha runout (Lied and Bakkehoi 1980); the D8 thalweg walks\n"
             "through pits of the DEM up to -maxClimb m deep (default 5) and on along level\n"
-            "ground for -maxFlat m without descending (default 1000).  -compare REL: the\n"
+            "ground for -maxFlat m without descending (default 1000).  -wind: the wind shelter\n"
+            "index (Winstral et al. 2002) for a wind from FROM deg, a sector of -+HALF deg\n"
+            "(default 30) within DMAX m (default 100): windShelter.tif and each area's mean\n"
+            "(releaseAreas.csv, windshelter_deg).  -compare REL: the\n"
             "fraction of the polygons' area the release areas cover.\n\n"
             "Writes DIR/releaseAreas.gpkg (.shp), releaseAreas.csv, releaseAreas_labels.tif,\n"
             "and with -alphaBeta alphaBeta.csv and thalwegs.csv (DIR default .).\n");
@@ -221,6 +226,7 @@ int main(int argc, char **argv)
     double d0star = NAN, gradient = 0, zref = NAN;
     int do_ab = 0;
     double max_climb = 5, max_flat = 1000;
+    double wind[3] = {NAN, 30, 100}; /* from, half width [deg], search distance [m] */
     for (int i = 1; i < argc; ++i) {
         const char *k = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         double x;
@@ -288,6 +294,17 @@ int main(int argc, char **argv)
         } else if (!strcmp(k, "-maxClimb")) {
             if (!number(v, &max_climb) || max_climb < 0)
                 return bad_option(k, v, "a height in m >= 0 (0: the thalweg ends in the first pit)");
+        } else if (!strcmp(k, "-wind")) {
+            char buf[256];
+            snprintf(buf, sizeof buf, "%s", v);
+            int nw = 0, okw = strlen(v) < sizeof buf;
+            for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok && okw; tok = strtok_r(NULL, ",", &save))
+                okw = nw < 3 && number(tok, &wind[nw++]);
+            if (!okw || nw < 1 || !(wind[0] >= 0 && wind[0] <= 360) || !(wind[1] > 0 && wind[1] <= 180) ||
+                !(wind[2] > 0))
+                return bad_option(k, v,
+                                  "FROM[,HALF[,DMAX]]: the direction the wind comes from in [0, 360] deg, the "
+                                  "sector's half width in (0, 180] deg (30), the search distance in m > 0 (100)");
         } else if (!strcmp(k, "-maxFlat")) {
             if (!number(v, &max_flat) || max_flat < 0)
                 return bad_option(k, v, "a length in m >= 0 (0: the thalweg ends where it stops descending)");
@@ -374,8 +391,41 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s: cannot write %s: %s\n", prog, path, strerror(errno));
         goto done;
     }
-    fprintf(f, "id,area_m2,slope_deg,altitude_m,aspect_deg,z_max,x_top,y_top,x_centroid,y_centroid%s\n",
-            d0 ? ",d0_m" : "");
+    double *ws = NULL, *ws_mean = NULL;
+    if (!isnan(wind[0])) {
+        ws = malloc(nc * sizeof *ws);
+        ws_mean = calloc(set.n + 1, sizeof *ws_mean);
+        size_t *cnt = calloc(set.n + 1, sizeof *cnt);
+        if (!ws || !ws_mean || !cnt || gf_wind_shelter(&dem, wind[0], wind[1], wind[2], ws) != GF_SUCCESS) {
+            fprintf(stderr, "%s: -wind %g,%g,%g: %s\n", prog, wind[0], wind[1], wind[2],
+                    ws && ws_mean && cnt ? gf_error_detail() : "out of memory");
+            free(cnt);
+            fclose(f);
+            free(ws);
+            free(ws_mean);
+            goto done;
+        }
+        for (size_t c = 0; c < nc; ++c)
+            if (set.label[c] > 0 && isfinite(ws[c])) {
+                ws_mean[set.label[c]] += ws[c];
+                ++cnt[set.label[c]];
+            }
+        for (size_t k = 1; k <= set.n; ++k)
+            ws_mean[k] = cnt[k] ? ws_mean[k] / (double)cnt[k] : NAN;
+        free(cnt);
+        char wpath[4096];
+        snprintf(wpath, sizeof wpath, "%s/windShelter.tif", out);
+        if (gf_raster_write(wpath, "GTiff", &dem, ws) != GF_SUCCESS) {
+            fprintf(stderr, "%s: %s\n", prog, gf_error_detail());
+            fclose(f);
+            free(ws);
+            free(ws_mean);
+            goto done;
+        }
+        free(ws);
+    }
+    fprintf(f, "id,area_m2,slope_deg,altitude_m,aspect_deg,z_max,x_top,y_top,x_centroid,y_centroid%s%s\n",
+            d0 ? ",d0_m" : "", ws_mean ? ",windshelter_deg" : "");
     double total = 0;
     for (size_t k = 0; k < set.n; ++k) {
         const gf_pra *a = &set.pra[k];
@@ -385,9 +435,16 @@ int main(int argc, char **argv)
                 a->aspect_deg, a->z_max, xt, yt, a->x, a->y);
         if (d0)
             fprintf(f, ",%.3f", d0[k]);
+        if (ws_mean) {
+            if (isfinite(ws_mean[a->id]))
+                fprintf(f, ",%.2f", ws_mean[a->id]);
+            else
+                fputc(',', f);
+        }
         fputc('\n', f);
         total += a->area_m2;
     }
+    free(ws_mean);
     if (fclose(f)) {
         fprintf(stderr, "%s: cannot write %s\n", prog, path);
         goto done;

@@ -59,6 +59,17 @@ gf_status gf_vrm(const gf_raster *dem, int window, double *vrm, double *aspect_s
  * apex. */
 gf_status gf_plan_curvature(const gf_raster *dem, double *curv);
 
+/* Wind shelter index [deg] (Winstral, Elder and Davis 2002), in the sector
+ * form of Veitinger et al. (2016): for each cell the largest elevation angle
+ * atan((z_j - z_i) / d_ij) to the cells j within dmax [m] whose direction
+ * lies within half_width_deg of where the wind comes from (wind_from_deg,
+ * clockwise from north).  Positive: sheltered (higher terrain upwind, snow
+ * is deposited), negative: exposed (snow is blown off).  NAN on NODATA and
+ * where the sector holds no cell.  Refused: a direction outside [0, 360], a
+ * half width outside (0, 180], dmax below the cell size or not finite. */
+gf_status gf_wind_shelter(const gf_raster *dem, double wind_from_deg, double half_width_deg, double dmax,
+                          double *sx);
+
 /* ---- potential release areas ----------------------------------------- */
 
 typedef struct gf_pra_params {
