@@ -51,9 +51,7 @@
  * M metres along the path (noise on the observation).
  */
 #define _GNU_SOURCE
-#include <dirent.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
@@ -62,7 +60,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/time.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -72,6 +69,7 @@
 #include <ogr_srs_api.h>
 
 #include "gf_dict.h"
+#include "gf_members.h"
 #include "granflow/calibration.h"
 #include "granflow/path_analysis.h"
 #include "granflow/terrain.h"
@@ -93,42 +91,9 @@ static void die(const char *fmt, ...)
     exit(1);
 }
 
-static char *cat(const char *a, const char *b)
-{
-    char *r = NULL;
-    if (asprintf(&r, "%s/%s", a, b) < 0) die("out of memory");
-    return r;
-}
-
-/* a program, its output to log (NULL: inherited); its exit status */
-static int run_prog(char *const argv[], const char *log)
-{
-    fflush(stdout);
-    const pid_t pid = fork();
-    if (pid < 0) die("fork: %s", strerror(errno));
-    if (pid == 0) {
-        if (log) {
-            const int fd = open(log, O_WRONLY | O_CREAT | O_APPEND, 0644);
-            if (fd >= 0) {
-                dup2(fd, 1);
-                dup2(fd, 2);
-            }
-        }
-        execvp(argv[0], argv);
-        fprintf(stderr, "cannot run %s: %s\n", argv[0], strerror(errno));
-        _exit(127);
-    }
-    int st = 0;
-    while (waitpid(pid, &st, 0) < 0 && errno == EINTR) {
-    }
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-}
-
-static int exists(const char *p)
-{
-    struct stat s;
-    return stat(p, &s) == 0;
-}
+static char *cat(const char *a, const char *b) { return gf_path(a, b); }
+#define run_prog gf_run
+#define exists gf_exists
 
 static double now(void)
 {
@@ -472,30 +437,7 @@ static void member_name(const calib *k, size_t index, char *buf, size_t size)
     snprintf(buf, size, "%s/eval_%04zu", k->evals, index);
 }
 
-/* append text to a file */
-static int append(const char *file, const char *text)
-{
-    FILE *f = fopen(file, "a");
-    if (!f) return -1;
-    const int r = fputs(text, f) < 0;
-    return fclose(f) != 0 || r ? -1 : 0;
-}
-
-/* "a/b/c" = v as nested dictionaries: a { b { c v; } } */
-static void override_text(const char *entry, double v, char *out, size_t size)
-{
-    char buf[512];
-    snprintf(buf, sizeof buf, "%s", entry);
-    size_t depth = 0, len = 0;
-    len += (size_t)snprintf(out + len, size - len, "\n// gfCalibrate\n");
-    char *save = NULL;
-    char *parts[32];
-    for (char *t = strtok_r(buf, "/", &save); t && depth < 32; t = strtok_r(NULL, "/", &save)) parts[depth++] = t;
-    for (size_t i = 0; i + 1 < depth; ++i) len += (size_t)snprintf(out + len, size - len, "%s { ", parts[i]);
-    len += (size_t)snprintf(out + len, size - len, "%s %.17g;", parts[depth - 1], v);
-    for (size_t i = 0; i + 1 < depth; ++i) len += (size_t)snprintf(out + len, size - len, " }");
-    snprintf(out + len, size - len, "\n");
-}
+#define append gf_append
 
 static double value(const param *p, double u) { return p->lo + (p->hi - p->lo) * u; }
 
@@ -641,30 +583,12 @@ static size_t n_design(const calib *k)
     return k->c->plan.n_sobol + (k->c->plan.morris_r ? k->c->plan.morris_r * (k->c->d + 1) : 0);
 }
 
-/* the time folders of a run but 0/ (its written fields) removed */
-static void remove_times(const char *m)
-{
-    DIR *dir = opendir(m);
-    if (!dir) return;
-    struct dirent *de;
-    while ((de = readdir(dir))) {
-        double t;
-        if (strcmp(de->d_name, "0") == 0 || !gf_parse_number(de->d_name, &t)) continue;
-        char *f = cat(m, de->d_name);
-        char *rm[] = {"rm", "-rf", f, NULL};
-        run_prog(rm, NULL);
-        free(f);
-    }
-    closedir(dir);
-}
-
 /* a member folder m: the template's copy with the parameters' values x
  * [d] written into its dictionaries; 0, or 1 with the reason */
 static int make_member(const calib *k, const char *m, const double *x, char *why, size_t wsize)
 {
     const config *c = k->c;
-    char *rm[] = {"rm", "-rf", (char *)m, NULL}, *cp[] = {"cp", "-a", k->templ, (char *)m, NULL};
-    if (run_prog(rm, NULL) || run_prog(cp, NULL)) die("cannot make the member folder %s", m);
+    if (gf_member_copy(k->templ, m, why, wsize)) die("%s", why);
     for (size_t j = 0; j < c->d; ++j) {
         const param *p = &c->p[j];
         char text[2048], *file;
@@ -672,7 +596,7 @@ static int make_member(const calib *k, const char *m, const double *x, char *why
             snprintf(text, sizeof text, "\n// gfCalibrate\nfactor %.17g;\n", x[j]);
             file = cat(m, "system/releaseDict");
         } else {
-            override_text(p->entry, x[j], text, sizeof text);
+            gf_override_text(p->entry, x[j], text, sizeof text);
             file = cat(m, p->file);
         }
         const int r = append(file, text);
@@ -709,7 +633,7 @@ static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf
         if (!bad && gf_workers_run(k->pool, m, &ok, why, sizeof why)) die("%s", gf_error_detail());
         *e = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN}, NAN, 0};
         if (ok && score(k, m, e, why, sizeof why) != 0) e->ok = 0;
-        remove_times(m); /* keep the logs, rasters and tables; the fields go */
+        gf_remove_times(m); /* keep the logs, rasters and tables; the fields go */
         write_result(m, u, d, e);
         if (!e->ok) {
             char *f = cat(m, "failure");
@@ -763,44 +687,11 @@ static void make_template(calib *k)
     if (asprintf(&tmp, "%s.tmp", k->templ) < 0) die("out of memory");
     char *rm[] = {"rm", "-rf", tmp, NULL};
     run_prog(rm, NULL);
-    if (mkdir(tmp, 0755) || mkdir(cat(tmp, "constant"), 0755)) die("cannot write %s", tmp);
-    char *sys = cat(k->casedir, "system"), *zero = cat(k->casedir, "0"), *inp = cat(k->casedir, "Inputs");
-    char *cp[] = {"cp", "-r", sys, zero, tmp, NULL};
-    if (run_prog(cp, NULL)) die("cannot copy %s and %s", sys, zero);
-    if (exists(inp)) {
-        char *abs = realpath(inp, NULL), *l = cat(tmp, "Inputs");
-        if (!abs || symlink(abs, l)) die("cannot link %s", inp);
-        free(abs);
-        free(l);
-    }
-    char *cons = cat(k->casedir, "constant");
-    char *ls = NULL;
-    const char *names[] = {"polyMesh", "faMesh"};
-    for (int i = 0; i < 2; ++i) {
-        char *f = cat(cons, names[i]), *abs = realpath(f, NULL), *l = cat(tmp, "constant");
-        char *l2 = cat(l, names[i]);
-        if (!abs || symlink(abs, l2)) die("%s: the case is not meshed (gfTerrainMesh)", f);
-        free(f), free(abs), free(l), free(l2);
-    }
-    if (asprintf(&ls, "for f in '%s'/*; do case \"${f##*/}\" in polyMesh|faMesh) ;; *) cp -r \"$f\" '%s/constant/' ;; esac; done",
-                 cons, tmp) < 0 || strchr(cons, '\'') || strchr(tmp, '\''))
-        die("a quote in the folder's name %s", cons);
-    char *sh[] = {"sh", "-c", ls, NULL};
-    if (run_prog(sh, NULL)) die("cannot copy %s", cons);
-    free(ls);
-    /* the controls: only the end written, the maps and the path analysis by
-     * the solver at its end (no plots) */
+    gf_case_controls ctl;
+    char err[2048];
+    if (gf_member_template(k->casedir, tmp, &ctl, err, sizeof err)) die("%s", err);
+    const int release_set = ctl.sets_release, has_pa = ctl.has_path_analysis;
     char *cd = cat(tmp, "system/controlDict");
-    char *end = case_word(cd, "endTime");
-    if (!end) die("%s: no endTime", cd);
-    char err[1024];
-    gf_dict *D = gf_dict_read(cd, err, sizeof err);
-    if (!D) die("%s", err);
-    const gf_dict_entry *sf = gf_dict_find(D, "setFields");
-    int release_set = 0;
-    for (size_t t = 0; sf && t < sf->ntok; ++t) release_set |= strcmp(sf->tok[t], "releaseDict") == 0;
-    const int has_pa = gf_dict_find(D, "pathAnalysis") != NULL;
-    gf_dict_free(D);
     for (size_t j = 0; j < c->d; ++j)
         if (c->p[j].release && !release_set)
             die("parameter %s (release factor): the case's system/controlDict does not set the release at the start "
@@ -808,7 +699,8 @@ static void make_template(calib *k)
                 c->p[j].name);
     char text[4096];
     snprintf(text, sizeof text,
-             "\n// gfCalibrate: the members' controls\nwriteInterval %s;\npeakFields yes;\nhazardMaps yes;\n%s\n", end,
+             "\n// gfCalibrate: the members' controls\nwriteInterval %s;\npeakFields yes;\nhazardMaps yes;\n%s\n",
+             ctl.end_time,
              has_pa ? "pathAnalysis { plots no; }"
                     : (!isnan(k->o->s_runout) ? "pathAnalysis { path \"Inputs/LINES/path_aimec.shp\"; plots no; }" : ""));
     if (append(cd, text)) die("cannot write %s", cd);
@@ -825,7 +717,7 @@ static void make_template(calib *k)
         free(f), free(log), free(entry);
     }
     if (rename(tmp, k->templ)) die("cannot rename %s", tmp);
-    free(tmp), free(sys), free(zero), free(inp), free(cons), free(cd), free(end);
+    free(tmp), free(cd);
 }
 
 /*-------------------------------------------------------------------- -observe --*/
