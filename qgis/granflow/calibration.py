@@ -183,9 +183,11 @@ class Calibration(GranflowAlgorithm):
     def range_of(self, parameters, key, context, what, lo=None, hi=None):
         """A range parameter as (lo, hi); None when not given; InputError
         naming the key unless lo < hi, both finite (and within [lo, hi])."""
-        if not self.has_value(parameters, key):
+        if not self.range_given(parameters, key):
             return None
         v = parameters.get(key)
+        if v is None:
+            v = self.parameterDefinition(key).defaultValue()
         text = ','.join(str(x) for x in v) if isinstance(v, (list, tuple)) else str(v)
         r = self.parameterAsRange(parameters, key, context)
         allowed = 'lo < hi, both finite' + ('' if lo is None else ', within [{:g}, {:g}]'.format(lo, hi))
@@ -193,6 +195,17 @@ class Calibration(GranflowAlgorithm):
                 or (lo is not None and not (r[0] >= lo and r[1] <= hi)):
             raise InputError('{} \'{}\': {}: expected lo,hi with {}'.format(key, text, what, allowed))
         return r[0], r[1]
+
+    def range_given(self, parameters, key):
+        """A range parameter is given: not empty, not 'None,None' or
+        'nan,nan' (an optional range the dialog leaves unset)."""
+        v = parameters.get(key)
+        if v is None:   # not given: its default (parameterAsRange's too)
+            v = self.parameterDefinition(key).defaultValue()
+        if v is None or v == '' or (hasattr(v, 'isNull') and v.isNull()):
+            return False
+        parts = [str(x).strip() for x in v] if isinstance(v, (list, tuple)) else str(v).split(',')
+        return not all(p.lower() in ('', 'none', 'nan', 'null') for p in parts)
 
     def friction_name(self, parameters, context):
         entry = (self.parameterAsString(parameters, 'FRICTION_ENTRY', context) or '').strip()
@@ -245,9 +258,9 @@ class Calibration(GranflowAlgorithm):
         if not os.path.isfile(os.path.join(case, 'system', 'terrainDict')):
             raise InputError('CASE {}: no system/terrainDict: not a terrain case (gfTerrainMesh, gfRunCase)'
                              .format(case))
-        if not os.path.isdir(os.path.join(case, 'constant', 'faMesh')):
-            raise InputError('CASE {}: no constant/faMesh: the case is not meshed (its tutorial\'s ./Allrun, or '
-                             'gfRunCase)'.format(case))
+        if not os.path.isdir(os.path.join(case, 'constant', 'polyMesh')):
+            raise InputError('CASE {}: no constant/polyMesh: the case is not meshed (its tutorial\'s ./Allrun, or '
+                             'gfRunCase: the run folder they write)'.format(case))
         openfoam_path('CASE', case)
         return case
 
@@ -273,7 +286,7 @@ class Calibration(GranflowAlgorithm):
             if not os.path.isfile(d):
                 raise InputError('DICT {}: no such file'.format(d))
             given = [k for k, _ in OBSERVATIONS if self.has_value(parameters, k)] + \
-                [k for k in ('RELEASE_RANGE',) if self.has_value(parameters, k)] + \
+                [k for k in ('RELEASE_RANGE',) if self.range_given(parameters, k)] + \
                 [k for k, *_ in NUMBERS if self.has_value(parameters, k)]
             if given:
                 raise InputError('DICT {} is given, and {} too: the dictionary names its parameters, observations '
