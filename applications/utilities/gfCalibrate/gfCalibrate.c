@@ -7,6 +7,7 @@
  * doc/guide/back-calculation.md).
  *
  *   gfCalibrate [-np N] [-dict FILE] [-out DIR] CASE
+ *   gfCalibrate -check [-dict FILE] CASE
  *   gfCalibrate -run "V1 ... Vd" [-dict FILE] -out DIR CASE
  *   gfCalibrate -observe RUN OUTDIR [-threshold KPA] [-shift CELLS] [-runoutShift M]
  *   gfCalibrate -version | -help
@@ -35,6 +36,11 @@
  * The exit status is 0 when the observation is reached, 3 when no
  * evaluation reproduces it (unreachable: reported, never a silent best
  * guess), 1 or 2 on errors.
+ *
+ * -check reads the dictionary and the observations, checks them and the
+ * parameters' entries in the case, and ends (exit status 0) without
+ * writing anything.  A case or output path with a blank or a quote is
+ * refused (OpenFOAM drops them from file names).
  *
  * -run makes one run of CASE in DIR (its own solver process) with the
  * dictionary's parameters at the values given, in the dictionary's order
@@ -327,9 +333,9 @@ static char *case_word(const char *file, const char *key)
 static void crs_check(const char *what, const char *file, const char *wkt, const observation *o, const char *dem)
 {
     const int same = gf_crs_same(wkt, o->dem.wkt);
-    if (same == 0) die("observation %s %s: its CRS is not the DEM's (%s): reproject it to the DEM's CRS", what, file, dem);
+    if (same == 0) die("observations/%s %s: its CRS is not the DEM's (%s): reproject it to the DEM's CRS", what, file, dem);
     if (same < 0 && *wkt && *o->dem.wkt)
-        die("observation %s %s: its CRS is not understood (GDAL), the DEM's is", what, file);
+        die("observations/%s %s: its CRS is not understood (GDAL), the DEM's is", what, file);
 }
 
 static void read_observation(const char *casedir, const config *c, observation *o)
@@ -677,6 +683,34 @@ static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf
     return GF_SUCCESS;
 }
 
+/* every parameter's entry must exist in the case's dictionary (a typo is
+ * refused, not ignored): checked before anything is written */
+static void check_entries(const char *casedir, const config *c)
+{
+    for (size_t j = 0; j < c->d; ++j) {
+        if (c->p[j].release) continue;
+        char *f = cat(casedir, c->p[j].file);
+        char *entry = strdup(c->p[j].entry);
+        char *fd[] = {"foamDictionary", "-entry", entry, "-value", f, NULL};
+        char *log = NULL;
+        if (asprintf(&log, "/tmp/gfCalibrate-check.%ld", (long)getpid()) < 0) die("out of memory");
+        const int bad = !exists(f) || run_prog(fd, log) != 0;
+        unlink(log);
+        if (bad) die("parameter %s: %s has no entry %s (%s)", c->p[j].name, c->p[j].file, c->p[j].entry, c->path);
+        free(f), free(log), free(entry);
+    }
+}
+
+/* a folder name the OpenFOAM runs can take: OpenFOAM v1912 drops blanks and
+ * quotes from file names (fileName::stripInvalid) */
+static void check_path(const char *what, const char *path)
+{
+    for (const char *p = path; *p; ++p)
+        if (*p == ' ' || *p == '\t' || *p == '\n' || *p == '"' || *p == '\'')
+            die("%s '%s': a blank or a quote in the path; OpenFOAM drops them from file names: move or rename it",
+                what, path);
+}
+
 /* the template: the case's system/, 0/ and constant/ (meshes linked), its
  * controls set for members */
 static void make_template(calib *k)
@@ -704,18 +738,6 @@ static void make_template(calib *k)
              has_pa ? "pathAnalysis { plots no; }"
                     : (!isnan(k->o->s_runout) ? "pathAnalysis { path \"Inputs/LINES/path_aimec.shp\"; plots no; }" : ""));
     if (append(cd, text)) die("cannot write %s", cd);
-    /* every parameter's entry must exist in the case (a typo is refused, not ignored) */
-    for (size_t j = 0; j < c->d; ++j) {
-        if (c->p[j].release) continue;
-        char *f = cat(tmp, c->p[j].file);
-        char *entry = strdup(c->p[j].entry);
-        char *fd[] = {"foamDictionary", "-entry", entry, "-value", f, NULL};
-        char *log = cat(tmp, "log.check");
-        if (!exists(f) || run_prog(fd, log) != 0)
-            die("parameter %s: %s has no entry %s (%s)", c->p[j].name, c->p[j].file, c->p[j].entry, c->path);
-        unlink(log);
-        free(f), free(log), free(entry);
-    }
     if (rename(tmp, k->templ)) die("cannot rename %s", tmp);
     free(tmp), free(cd);
 }
@@ -891,9 +913,10 @@ static void loss_picture(const calib *k, const gf_calib_run *run, const int *acc
                     run->ev[i].loss, accepted[i]);
     fclose(f);
     /* the emulator's contours where it is a bowl around the best point (every
-     * curvature > 0); a saddle says the loss has a curved valley or several,
-     * which the evaluations show better */
-    int bowl = have_em;
+     * curvature > 0) that fits the loss (R2 >= 0.95); a saddle or a poor fit
+     * says the loss has a curved valley or several, which the evaluations
+     * show better */
+    int bowl = have_em && em->r2 >= 0.95; /* a fit that describes the loss */
     for (size_t kk = 0; have_em && kk < d; ++kk) bowl &= em->curvature[kk] > 0;
     int contours = 0;
     if (bowl) {
@@ -1094,9 +1117,29 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
         for (size_t kk = 0; kk < d; ++kk)
             if (em.ridge[kk])
                 for (size_t j = 0; j < d; ++j) ridge_param[j] |= fabs(em.direction[kk * d + j]) > 0.3;
+    /* the trade-off among the runs that reproduce the observation: their
+     * correlation per pair of parameters (|r| >= 0.7: raising one and
+     * moving the other with it reproduces the event as well) */
+    double corr[MAXP * MAXP];
+    int tradeoff[MAXP];
+    for (size_t j = 0; j < d; ++j) tradeoff[j] = -1;
+    for (size_t a = 0; a < d; ++a)
+        for (size_t b = 0; b < d; ++b) {
+            double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+            for (size_t i = 0; i < n; ++i) {
+                if (!accepted[i]) continue;
+                const double x = run->u[i * d + a], y = run->u[i * d + b];
+                sa += x, sb += y, saa += x * x, sbb += y * y, sab += x * y;
+            }
+            const double na = (double)nacc, va = saa - sa * sa / na, vb = sbb - sb * sb / na;
+            corr[a * d + b] = nacc >= 3 && va > 0 && vb > 0 ? (sab - sa * sb / na) / sqrt(va * vb) : NAN;
+            if (a != b && fabs(corr[a * d + b]) >= 0.7 && tradeoff[a] < 0) tradeoff[a] = (int)b;
+        }
+    const char *ident[MAXP];
+    for (size_t j = 0; j < d; ++j) ident[j] = ridge_param[j] ? "ridge" : tradeoff[j] >= 0 ? "tradeoff" : "yes";
     for (size_t j = 0; j < d; ++j)
         fprintf(f, "%s,%.9g,%.9g,%.9g,%.9g,%.9g,%s\n", c->p[j].name, value(&c->p[j], run->u[best * d + j]),
-                nacc ? lo[j] : NAN, nacc ? hi[j] : NAN, c->p[j].lo, c->p[j].hi, ridge_param[j] ? "ridge" : "yes");
+                nacc ? lo[j] : NAN, nacc ? hi[j] : NAN, c->p[j].lo, c->p[j].hi, ident[j]);
     fclose(f);
 
     char *sp = cat(k->dir, "summary.txt");
@@ -1121,9 +1164,21 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
         for (size_t j = 0; j < d; ++j) {
             char acc[64] = "none";
             if (nacc) snprintf(acc, sizeof acc, "%.4g .. %.4g", lo[j], hi[j]);
+            char con[160] = "yes";
+            if (ridge_param[j])
+                snprintf(con, sizeof con, "no: on a ridge");
+            else if (tradeoff[j] >= 0)
+                snprintf(con, sizeof con, "with %s (r = %+.2f)", c->p[tradeoff[j]].name, corr[j * d + (size_t)tradeoff[j]]);
             fprintf(o, "%-16s %12.5g %27s %12.4g .. %-10.4g %s\n", c->p[j].name, value(&c->p[j], run->u[best * d + j]),
-                    acc, c->p[j].lo, c->p[j].hi, ridge_param[j] ? "no: on a ridge" : "yes");
+                    acc, c->p[j].lo, c->p[j].hi, con);
         }
+        for (size_t a2 = 0; a2 < d; ++a2)
+            for (size_t b2 = a2 + 1; b2 < d; ++b2)
+                if (fabs(corr[a2 * d + b2]) >= 0.7)
+                    fprintf(o, "trade-off: %s and %s correlate with r = %+.2f among the runs that reproduce the "
+                               "observation: %s one with the other reproduces the event as well; the observation "
+                               "constrains their combination, not each\n",
+                            c->p[a2].name, c->p[b2].name, corr[a2 * d + b2], corr[a2 * d + b2] > 0 ? "raising" : "lowering");
         fprintf(o, "(%zu evaluations reproduce the observation: Jaccard >= %g, |runout error| <= %g m; the range "
                    "is theirs)\n",
                 nacc, c->min_jaccard, c->runout_tol);
@@ -1157,9 +1212,8 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
         } else if (run->n_morris) {
             fprintf(o, "\nsensitivity: not computed (a Morris member failed)\n");
         }
-        fprintf(o, "\noutputs: %s/{evaluations.csv,parameters.csv,best/,bestOutline.tif,loss_*.png}; the best run's "
-                   "maps with the observation: best/postProcessing/hazardMaps/report/\n",
-                k->dir);
+        fprintf(o, "\noutputs (in the output folder): evaluations.csv, parameters.csv, best/, bestOutline.tif, "
+                   "loss_*.png; the best run's maps with the observation: best/postProcessing/hazardMaps/report/\n");
     }
     fclose(f);
     free(loss), free(jac), free(rerr), free(idx), free(accepted), free(uu), free(csv), free(bestdir), free(cmp),
@@ -1216,6 +1270,7 @@ static void usage(int st)
 {
     fprintf(st ? stderr : stdout,
             "usage: gfCalibrate [-np N] [-dict FILE] [-out DIR] CASE\n"
+            "       gfCalibrate -check [-dict FILE] CASE\n"
             "       gfCalibrate -run \"V1 ... Vd\" [-dict FILE] -out DIR CASE\n"
             "       gfCalibrate -observe RUN OUTDIR [-threshold KPA] [-shift CELLS] [-runoutShift M]\n"
             "       gfCalibrate -version\n"
@@ -1234,6 +1289,7 @@ int main(int argc, char **argv)
     if (argc > 1 && strcmp(argv[1], "-observe") == 0) return observe(argc, argv);
     long np = sysconf(_SC_NPROCESSORS_ONLN);
     const char *dictp = NULL, *out = NULL, *casedir = NULL, *runvalues = NULL;
+    int check_only = 0;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "-np") == 0 && i + 1 < argc) {
             double v;
@@ -1243,6 +1299,8 @@ int main(int argc, char **argv)
             dictp = argv[++i];
         } else if (strcmp(argv[i], "-out") == 0 && i + 1 < argc) {
             out = argv[++i];
+        } else if (strcmp(argv[i], "-check") == 0) {
+            check_only = 1;
         } else if (strcmp(argv[i], "-run") == 0 && i + 1 < argc) {
             runvalues = argv[++i];
         } else if (argv[i][0] == '-') {
@@ -1261,10 +1319,17 @@ int main(int argc, char **argv)
     char *dp = dictp ? strdup(dictp) : cat(casereal, "system/calibrationDict");
     config c;
     read_config(dp, &c);
+    check_path("the case", casereal);
+    if (out) check_path("-out", out);
+    check_entries(casereal, &c);
     GDALAllRegister();
     observation o;
     if (runvalues) return run_one(casereal, &c, runvalues, out);
     read_observation(casereal, &c, &o);
+    if (check_only) {
+        printf("gfCalibrate -check: %s and its observations are valid for %s\n", dp, casereal);
+        return 0;
+    }
 
     calib k;
     memset(&k, 0, sizeof k);
