@@ -1,0 +1,970 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * gfRegionalMap — every release area of a valley, for every scenario, run
+ * on the ensemble workers and merged into regional hazard indication maps
+ * (issue 52; doc/guide/regional.md, doc/theory/regional.md):
+ *
+ *   gfRegionalMap [-dict FILE] [-out DIR] [-np N] [-check] CASE
+ *   gfRegionalMap -help | -version
+ *
+ * CASE is a meshed terrain case whose system/controlDict sets the release
+ * at the start (setFields (releaseDict);), e.g. tutorials/avaKot/run-coarse
+ * after its Allrun -coarse.  The dictionary (default CASE/system/regionalDict):
+ *
+ *     releaseAreas      "PRA/releaseAreas.gpkg"; // polygons (OGR), relative to CASE or absolute
+ *     idAttribute       id;           // integer field naming each release (default id)
+ *     releases          (1 3 4);      // optional: only these ids (default: every polygon)
+ *     slopeAttribute    slope_deg;    // mean slope [deg] (Salm scenarios; default slope_deg)
+ *     altitudeAttribute altitude_m;   // mean altitude [m] (Salm scenarios; default altitude_m)
+ *     gradient          0.0005;       // Salm: d0* change per m of altitude [m/m] (default 0)
+ *     zRef              2000;         // Salm: altitude of d0* [m] (needed when a gradient is not 0)
+ *     measured          normal;       // the depth normal to the terrain, or vertical (default normal)
+ *     threshold         1;            // peak pressure [kPa] of a reached cell (count, area; default 1)
+ *     zones             (1 10 30);    // peak pressure class limits [kPa], increasing (default (1 10 30))
+ *     scenarios
+ *     {
+ *         small { d0Star 0.5; }                   // d0 = (d0* + gradient (z - zRef)) f(slope)
+ *         large { d0Star 1.0; gradient 0; }       // gradient, zRef per scenario override the top's
+ *         given { thicknessAttribute d0_m; factor 1.2; }  // the polygon's own depth x factor
+ *     }
+ *
+ * gfReleaseAreas -d0 writes such polygons (id, slope_deg, altitude_m, d0_m);
+ * any polygon file with an integer id and a thickness attribute will do.
+ * Every release x scenario is a member: a copy of the case's template
+ * (OUT/template: system/ and 0/ copied, the meshes linked; its controlDict
+ * writes only the end time, peakFields and hazardMaps on, its pathAnalysis
+ * removed), OUT/members/SCENARIO_rID/ with release.shp (that one polygon)
+ * and a system/releaseDict 'polygons { file release.shp; value D; }'.  The
+ * members run in N workers (faGranularFlowFoam -members -, the mesh loaded
+ * once per worker; N default: the cores).  Each member's result is in its
+ * folder (result): started again, the command reads every result and runs
+ * only the members without one (a killed batch resumes; nothing runs twice).
+ * A member whose depth is refused (Salm: d0* + gradient (z - zRef) < 0, a
+ * slope outside [15, 90] deg; a depth <= 0) or whose run fails is listed
+ * with its reason and the others go on.
+ *
+ * Writes, per scenario, OUT/SCENARIO/: pressurePeakMax.tif, hPeakMax.tif,
+ * speedPeakMax.tif (each cell's largest peak over the scenario's members,
+ * gf_merge_max), count.tif (the members whose peak pressure exceeds the
+ * threshold there), releaseId.tif (the id of the member giving the largest
+ * peak pressure, the first of equal ones; NODATA where no member reaches the
+ * cell, peak pressure 0), zones.tif (0 below zones[0], k where the largest
+ * peak pressure exceeds zones[k-1], NODATA outside the mesh); OUT/members.csv
+ * (release, scenario, depth, status, seconds, affected area above the
+ * threshold, largest peak pressure, reason) and OUT/summary.txt.  Prints
+ * shell-readable lines name=value at the end (members, ran, resumed, failed,
+ * seconds, secondsPerMember).  Exit status 0 when every member ran, 3 when
+ * some failed (their maps merged without them), 1 on refused input (the file,
+ * the key and its allowed range named), 2 on a wrong command line.
+ *
+ * -check reads the dictionary and the polygons and prints every member with
+ * its depth, writing nothing.
+ */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include <cpl_error.h>
+#include <gdal.h>
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include "gf_dict.h"
+#include "gf_members.h"
+#include "granflow/path_analysis.h"
+#include "granflow/regional.h"
+#include "granflow/terrain.h"
+#include "granflow/version.h"
+#include "granflow/workers.h"
+
+#define MAXSCEN 32
+#define MAXZONES 8
+
+static const char *prog = "gfRegionalMap";
+
+static void die(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "%s: ", prog);
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\n");
+    va_end(ap);
+    exit(1);
+}
+
+static double now(void)
+{
+    struct timeval t;
+    gettimeofday(&t, NULL);
+    return (double)t.tv_sec + 1e-6 * (double)t.tv_usec;
+}
+
+/*---------------------------------------------------------------- the dictionary --*/
+
+typedef struct scenario {
+    char name[64];
+    int salm;          /* 1: Salm's depth; 0: the polygon's attribute x factor */
+    double d0star, gradient, zref, factor;
+    char attr[64];
+} scenario;
+
+typedef struct config {
+    const char *path;
+    char *areas;        /* the polygon file (absolute) */
+    char id_attr[64], slope_attr[64], alt_attr[64];
+    long *only;         /* releases (ids), or NULL */
+    size_t n_only;
+    int vertical;
+    double threshold;
+    double zones[MAXZONES];
+    size_t n_zones;
+    scenario s[MAXSCEN];
+    size_t ns;
+} config;
+
+static void bad(const config *c, const gf_dict_entry *e, const char *key, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "%s: %s", prog, c->path);
+    if (e) fprintf(stderr, ":%d", e->line);
+    fprintf(stderr, ": %s: ", key);
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\n");
+    va_end(ap);
+    exit(1);
+}
+
+static void full_key(const gf_dict *d, const char *key, char *out, size_t size)
+{
+    snprintf(out, size, "%s%s%s", d->name, *d->name ? "/" : "", key);
+}
+
+/* a number key of d (def when absent; NAN def: required) in [lo, hi] */
+static double num(const config *c, const gf_dict *d, const char *key, double def, double lo, double hi)
+{
+    char full[256];
+    full_key(d, key, full, sizeof full);
+    const gf_dict_entry *e = gf_dict_find(d, key);
+    if (!e) {
+        if (isnan(def)) bad(c, NULL, full, "required (a number in [%g, %g])", lo, hi);
+        return def;
+    }
+    double v;
+    if (e->sub || e->ntok != 1 || !gf_parse_number(e->tok[0], &v))
+        bad(c, e, full, "expected one number in [%g, %g]", lo, hi);
+    if (!(v >= lo && v <= hi)) bad(c, e, full, "%g is outside the allowed range [%g, %g]", v, lo, hi);
+    return v;
+}
+
+static const char *word(const config *c, const gf_dict *d, const char *key, const char *def)
+{
+    char full[256];
+    full_key(d, key, full, sizeof full);
+    const gf_dict_entry *e = gf_dict_find(d, key);
+    if (!e) return def;
+    if (e->sub || e->ntok != 1 || !*e->tok[0]) bad(c, e, full, "expected one word or \"file name\"");
+    if (strlen(e->tok[0]) >= 64 && strcmp(key, "releaseAreas") != 0) bad(c, e, full, "longer than 63 characters");
+    return e->tok[0];
+}
+
+/* a list ( a b c ) of numbers in [lo, hi]; its count, at most max */
+static size_t numbers(const config *c, const gf_dict_entry *e, const char *key, double *v, size_t max, double lo,
+                      double hi)
+{
+    if (e->sub || e->ntok < 3 || strcmp(e->tok[0], "(") || strcmp(e->tok[e->ntok - 1], ")"))
+        bad(c, e, key, "expected a list ( n1 n2 ... ) of numbers in [%g, %g]", lo, hi);
+    const size_t n = e->ntok - 2;
+    if (n > max) bad(c, e, key, "%zu values: at most %zu allowed", n, max);
+    for (size_t k = 0; k < n; ++k) {
+        if (!gf_parse_number(e->tok[k + 1], &v[k])) bad(c, e, key, "'%s' is not a number", e->tok[k + 1]);
+        if (!(v[k] >= lo && v[k] <= hi)) bad(c, e, key, "%g is outside the allowed range [%g, %g]", v[k], lo, hi);
+    }
+    return n;
+}
+
+static int plain_name(const char *s)
+{
+    if (!*s) return 0;
+    for (const char *p = s; *p; ++p)
+        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '_' ||
+              *p == '-'))
+            return 0;
+    return 1;
+}
+
+static void read_config(const char *path, const char *casedir, config *c)
+{
+    char err[2048];
+    memset(c, 0, sizeof *c);
+    c->path = path;
+    gf_dict *D = gf_dict_read(path, err, sizeof err);
+    if (!D) die("%s", err);
+    const char *areas = word(c, D, "releaseAreas", NULL);
+    if (!areas) bad(c, NULL, "releaseAreas", "required: the release polygons (\"file\", relative to the case or absolute)");
+    if (areas[0] == '/') {
+        c->areas = strdup(areas);
+    } else {
+        c->areas = gf_path(casedir, areas);
+    }
+    if (!gf_exists(c->areas)) bad(c, gf_dict_find(D, "releaseAreas"), "releaseAreas", "%s: no such file", c->areas);
+    snprintf(c->id_attr, sizeof c->id_attr, "%s", word(c, D, "idAttribute", "id"));
+    snprintf(c->slope_attr, sizeof c->slope_attr, "%s", word(c, D, "slopeAttribute", "slope_deg"));
+    snprintf(c->alt_attr, sizeof c->alt_attr, "%s", word(c, D, "altitudeAttribute", "altitude_m"));
+    const gf_dict_entry *e = gf_dict_find(D, "releases");
+    if (e) {
+        double v[4096];
+        c->n_only = numbers(c, e, "releases", v, 4096, 0, 2147483647.0);
+        c->only = malloc(c->n_only * sizeof *c->only);
+        for (size_t k = 0; k < c->n_only; ++k) {
+            if (v[k] != floor(v[k])) bad(c, e, "releases", "%g is not a whole number (an id)", v[k]);
+            c->only[k] = (long)v[k];
+        }
+    }
+    const char *m = word(c, D, "measured", "normal");
+    if (strcmp(m, "normal") && strcmp(m, "vertical"))
+        bad(c, gf_dict_find(D, "measured"), "measured", "'%s': allowed normal or vertical", m);
+    c->vertical = strcmp(m, "vertical") == 0;
+    c->threshold = num(c, D, "threshold", 1, 1e-6, 1e6);
+    e = gf_dict_find(D, "zones");
+    if (e) {
+        c->n_zones = numbers(c, e, "zones", c->zones, MAXZONES, 1e-6, 1e6);
+        for (size_t k = 1; k < c->n_zones; ++k)
+            if (!(c->zones[k] > c->zones[k - 1]))
+                bad(c, e, "zones", "%g after %g: the limits must increase", c->zones[k], c->zones[k - 1]);
+    } else {
+        c->n_zones = 3;
+        c->zones[0] = 1, c->zones[1] = 10, c->zones[2] = 30;
+    }
+    const double gradient = num(c, D, "gradient", 0, -1, 1);
+    const double zref = num(c, D, "zRef", 1e300, -500, 9000); /* 1e300: not given */
+    e = gf_dict_find(D, "scenarios");
+    if (!e) bad(c, NULL, "scenarios", "required: a dictionary { NAME { d0Star D; } ... } of at least one scenario");
+    if (!e->sub || e->sub->n == 0)
+        bad(c, e, "scenarios", "expected a dictionary { NAME { d0Star D; } ... } of at least one scenario");
+    if (e->sub->n > MAXSCEN) bad(c, e, "scenarios", "%zu scenarios: at most %d", e->sub->n, MAXSCEN);
+    for (size_t k = 0; k < e->sub->n; ++k) {
+        gf_dict_entry *se = &e->sub->e[k];
+        se->used = 1;
+        char full[256];
+        snprintf(full, sizeof full, "scenarios/%s", se->key);
+        if (!plain_name(se->key) || strlen(se->key) >= 48)
+            bad(c, se, full, "a scenario's name is a folder name: letters, digits, _ and -, at most 47 characters");
+        if (!se->sub) bad(c, se, full, "expected a dictionary { d0Star D; } or { thicknessAttribute NAME; }");
+        for (size_t j = 0; j < k; ++j)
+            if (strcmp(c->s[j].name, se->key) == 0) bad(c, se, full, "a second scenario of this name");
+        scenario *s = &c->s[c->ns++];
+        snprintf(s->name, sizeof s->name, "%s", se->key);
+        const gf_dict *sd = se->sub;
+        const int has_d0 = gf_dict_find(sd, "d0Star") != NULL, has_attr = gf_dict_find(sd, "thicknessAttribute") != NULL;
+        if (has_d0 == has_attr)
+            bad(c, se, full, "takes one of d0Star (Salm's depth [m], in [0, 20]) and thicknessAttribute (a field of the polygons)");
+        if (has_d0) {
+            s->salm = 1;
+            s->d0star = num(c, sd, "d0Star", NAN, 0, 20);
+            s->gradient = num(c, sd, "gradient", gradient, -1, 1);
+            s->zref = num(c, sd, "zRef", zref, -500, 9000);
+            if (s->zref == 1e300) {
+                if (s->gradient != 0) bad(c, se, full, "gradient %g needs zRef (the altitude of d0Star [m], in [-500, 9000])", s->gradient);
+                s->zref = 0;
+            }
+        } else {
+            snprintf(s->attr, sizeof s->attr, "%s", word(c, sd, "thicknessAttribute", NULL));
+            s->factor = num(c, sd, "factor", 1, 1e-6, 100);
+        }
+    }
+    const gf_dict *in = NULL;
+    const gf_dict_entry *u = gf_dict_unused(D, &in);
+    if (u) {
+        char full[256];
+        full_key(in, u->key, full, sizeof full);
+        bad(c, u, full,
+            "unknown key (allowed: releaseAreas idAttribute releases slopeAttribute altitudeAttribute gradient zRef "
+            "measured threshold zones scenarios; a scenario: d0Star gradient zRef, or thicknessAttribute factor)");
+    }
+    gf_dict_free(D);
+}
+
+/*---------------------------------------------------------------- the releases --*/
+
+typedef struct release {
+    long id;
+    OGRGeometryH geom;
+    double slope, alt;          /* NAN when the file has no such field */
+    double attr[MAXSCEN];       /* the scenario's thickness attribute (NAN: none) */
+} release;
+
+typedef struct areas {
+    size_t n;
+    release *r;
+    OGRSpatialReferenceH srs;   /* the layer's (may be NULL) */
+} areas;
+
+static int field_index(OGRFeatureDefnH def, const char *name)
+{
+    return OGR_FD_GetFieldIndex(def, name);
+}
+
+static void read_areas(const config *c, areas *A)
+{
+    memset(A, 0, sizeof *A);
+    /* the fields: numeric, named with the ones there are when missing */
+    char need[256];
+    snprintf(need, sizeof need, "a whole number naming each release (%s idAttribute)", c->path);
+    if (gf_vector_field_numeric(c->areas, c->id_attr, need)) die("%s", gf_error_detail());
+    int any_salm = 0;
+    for (size_t s = 0; s < c->ns; ++s) {
+        if (c->s[s].salm) {
+            any_salm = 1;
+            continue;
+        }
+        char what[512];
+        snprintf(what, sizeof what, "a depth in metres (%s scenarios/%s/thicknessAttribute)", c->path, c->s[s].name);
+        if (gf_vector_field_numeric(c->areas, c->s[s].attr, what)) die("%s", gf_error_detail());
+    }
+    if (any_salm) {
+        char what[512];
+        snprintf(what, sizeof what, "the mean slope in degrees of each area, for Salm's depth (%s slopeAttribute)", c->path);
+        if (gf_vector_field_numeric(c->areas, c->slope_attr, what)) die("%s", gf_error_detail());
+        snprintf(what, sizeof what, "the mean altitude in metres of each area, for Salm's depth (%s altitudeAttribute)", c->path);
+        if (gf_vector_field_numeric(c->areas, c->alt_attr, what)) die("%s", gf_error_detail());
+    }
+    GDALDatasetH ds = GDALOpenEx(c->areas, GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
+    if (!ds) die("%s (releaseAreas of %s): OGR cannot open it", c->areas, c->path);
+    OGRLayerH L = GDALDatasetGetLayer(ds, 0);
+    if (!L) die("%s (releaseAreas of %s): no layer", c->areas, c->path);
+    OGRFeatureDefnH def = OGR_L_GetLayerDefn(L);
+    const int fid = field_index(def, c->id_attr);
+    const int fs = field_index(def, c->slope_attr), fa = field_index(def, c->alt_attr);
+    int fattr[MAXSCEN];
+    for (size_t s = 0; s < c->ns; ++s) fattr[s] = c->s[s].salm ? -1 : field_index(def, c->s[s].attr);
+    OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(L);
+    if (srs) A->srs = OSRClone(srs);
+    size_t cap = 0;
+    OGRFeatureH f;
+    OGR_L_ResetReading(L);
+    while ((f = OGR_L_GetNextFeature(L))) {
+        OGRGeometryH g = OGR_F_GetGeometryRef(f);
+        const long fnum = (long)OGR_F_GetFID(f);
+        if (!g || (wkbFlatten(OGR_G_GetGeometryType(g)) != wkbPolygon &&
+                   wkbFlatten(OGR_G_GetGeometryType(g)) != wkbMultiPolygon))
+            die("%s (releaseAreas of %s): feature %ld has no polygon", c->areas, c->path, fnum);
+        if (!OGR_F_IsFieldSetAndNotNull(f, fid))
+            die("%s (releaseAreas of %s): feature %ld has no %s (idAttribute)", c->areas, c->path, fnum, c->id_attr);
+        const double idv = OGR_F_GetFieldAsDouble(f, fid);
+        if (idv != floor(idv) || idv < 0 || idv > 2147483647.0)
+            die("%s (releaseAreas of %s): feature %ld: %s %g is not a whole number in [0, 2147483647]", c->areas, c->path,
+                fnum, c->id_attr, idv);
+        const long id = (long)idv;
+        int keep = !c->only;
+        for (size_t k = 0; k < c->n_only; ++k) keep |= c->only[k] == id;
+        if (keep) {
+            for (size_t k = 0; k < A->n; ++k)
+                if (A->r[k].id == id)
+                    die("%s (releaseAreas of %s): %s %ld names two features (%s idAttribute: one id per release)",
+                        c->areas, c->path, c->id_attr, id, c->path);
+            if (A->n == cap) {
+                cap = cap ? 2 * cap : 16;
+                A->r = realloc(A->r, cap * sizeof *A->r);
+                if (!A->r) die("out of memory");
+            }
+            release *r = &A->r[A->n++];
+            r->id = id;
+            r->geom = OGR_G_Clone(g);
+            r->slope = fs >= 0 && OGR_F_IsFieldSetAndNotNull(f, fs) ? OGR_F_GetFieldAsDouble(f, fs) : NAN;
+            r->alt = fa >= 0 && OGR_F_IsFieldSetAndNotNull(f, fa) ? OGR_F_GetFieldAsDouble(f, fa) : NAN;
+            for (size_t s = 0; s < c->ns; ++s)
+                r->attr[s] = fattr[s] >= 0 && OGR_F_IsFieldSetAndNotNull(f, fattr[s]) ? OGR_F_GetFieldAsDouble(f, fattr[s])
+                                                                                     : NAN;
+        }
+        OGR_F_Destroy(f);
+    }
+    GDALClose(ds);
+    for (size_t k = 0; k < c->n_only; ++k) {
+        int found = 0;
+        for (size_t j = 0; j < A->n; ++j) found |= A->r[j].id == c->only[k];
+        if (!found)
+            die("%s: releases: id %ld is not in %s (field %s)", c->path, c->only[k], c->areas, c->id_attr);
+    }
+    if (A->n == 0) die("%s (releaseAreas of %s): no release polygon", c->areas, c->path);
+}
+
+/* the depth of release r in scenario s; 0, or -1 with the reason */
+static int depth(const config *c, const release *r, size_t s, double *d, char *why, size_t wsize)
+{
+    const scenario *sc = &c->s[s];
+    *d = NAN;
+    if (sc->salm) {
+        if (isnan(r->slope) || isnan(r->alt)) {
+            snprintf(why, wsize, "no %s or %s value for Salm's depth", c->slope_attr, c->alt_attr);
+            return -1;
+        }
+        if (gf_release_depth(sc->d0star, sc->gradient, r->alt, sc->zref, r->slope, d)) {
+            snprintf(why, wsize, "depth refused: %s", gf_error_detail());
+            *d = NAN;
+            return -1;
+        }
+    } else {
+        if (isnan(r->attr[s])) {
+            snprintf(why, wsize, "no %s value (thicknessAttribute)", sc->attr);
+            return -1;
+        }
+        *d = r->attr[s] * sc->factor;
+    }
+    if (!(*d > 0) || !isfinite(*d) || *d > 100) {
+        snprintf(why, wsize, "depth %g m outside the allowed range (0, 100] m", *d);
+        return -1;
+    }
+    return 0;
+}
+
+/*---------------------------------------------------------------- the members --*/
+
+typedef struct member {
+    size_t rel, scen;
+    double depth;
+    int pre_failed;       /* the depth was refused: never run */
+    char why[1024];
+    /* the result */
+    int done, ok, resumed;
+    double seconds, affected, maxppr;
+} member;
+
+typedef struct job {
+    const config *c;
+    const areas *A;
+    member *m;
+    size_t nm;
+    char *dir, *templ, *members;
+    gf_workers *pool;
+    pthread_mutex_t lock;
+    size_t next, finished, total;
+    double t0;
+} job;
+
+static void member_dir(const job *j, const member *m, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s/%s_r%ld", j->members, j->c->s[m->scen].name, j->A->r[m->rel].id);
+}
+
+/* result: "ok DEPTH SECONDS AREA MAXPPR" or "failed DEPTH SECONDS" and the
+ * reason on the second line */
+static int read_result(const char *md, member *m)
+{
+    char *f = gf_path(md, "result");
+    FILE *in = fopen(f, "r");
+    free(f);
+    if (!in) return 0;
+    char st[16] = "";
+    double d, sec, a = NAN, p = NAN;
+    const int n = fscanf(in, "%15s %lf %lf %lf %lf", st, &d, &sec, &a, &p);
+    int okr = 0;
+    if (n == 5 && strcmp(st, "ok") == 0) {
+        m->ok = 1, okr = 1;
+    } else if (n >= 3 && strcmp(st, "failed") == 0) {
+        m->ok = 0, okr = 1;
+        int ch;
+        while ((ch = fgetc(in)) != EOF && ch != '\n') {
+        }
+        if (!fgets(m->why, sizeof m->why, in)) m->why[0] = 0;
+        m->why[strcspn(m->why, "\n")] = 0;
+    }
+    fclose(in);
+    if (!okr) return 0;
+    m->seconds = sec, m->affected = a, m->maxppr = p;
+    m->done = 1, m->resumed = 1;
+    return 1;
+}
+
+static void write_result(const char *md, const member *m)
+{
+    char *f = gf_path(md, "result"), *tmp = gf_path(md, "result.tmp");
+    FILE *out = fopen(tmp, "w");
+    if (!out) die("cannot write %s", tmp);
+    if (m->ok)
+        fprintf(out, "ok %.17g %.3f %.17g %.17g\n", m->depth, m->seconds, m->affected, m->maxppr);
+    else
+        fprintf(out, "failed %.17g %.3f\n%s\n", m->depth, m->seconds, m->why);
+    if (fclose(out) || rename(tmp, f)) die("cannot write %s", f);
+    free(f), free(tmp);
+}
+
+/* the one polygon of release r as a shapefile (the layer's CRS: its .prj) */
+static int write_release_shp(const areas *A, const release *r, const char *path, char *why, size_t wsize)
+{
+    GDALDriverH drv = GDALGetDriverByName("ESRI Shapefile");
+    if (!drv) die("GDAL lacks the ESRI Shapefile driver");
+    GDALDatasetH ds = GDALCreate(drv, path, 0, 0, 0, GDT_Unknown, NULL);
+    if (!ds) {
+        snprintf(why, wsize, "cannot write %s: %s", path, CPLGetLastErrorMsg());
+        return -1;
+    }
+    OGRLayerH L = GDALDatasetCreateLayer(ds, "release", A->srs, wkbMultiPolygon, NULL);
+    OGRFieldDefnH fd = OGR_Fld_Create("id", OFTInteger);
+    int st = !L || OGR_L_CreateField(L, fd, 1) != OGRERR_NONE;
+    OGR_Fld_Destroy(fd);
+    if (!st) {
+        OGRFeatureH f = OGR_F_Create(OGR_L_GetLayerDefn(L));
+        OGR_F_SetFieldInteger(f, 0, (int)r->id);
+        OGR_F_SetGeometry(f, r->geom);
+        st = OGR_L_CreateFeature(L, f) != OGRERR_NONE;
+        OGR_F_Destroy(f);
+    }
+    GDALClose(ds);
+    if (st) snprintf(why, wsize, "cannot write %s: %s", path, CPLGetLastErrorMsg());
+    return st ? -1 : 0;
+}
+
+static int make_member(const job *j, const member *m, const char *md, char *why, size_t wsize)
+{
+    if (gf_member_copy(j->templ, md, why, wsize)) return -1;
+    char *shp = gf_path(md, "release.shp");
+    const int st = write_release_shp(j->A, &j->A->r[m->rel], shp, why, wsize);
+    if (st) {
+        free(shp);
+        return -1;
+    }
+    char *rd = gf_path(md, "system/releaseDict");
+    FILE *out = fopen(rd, "w");
+    if (!out) {
+        snprintf(why, wsize, "cannot write %s", rd);
+        free(rd), free(shp);
+        return -1;
+    }
+    fprintf(out,
+            "FoamFile { version 2.0; format ascii; class dictionary; location \"system\"; object releaseDict; }\n"
+            "// gfRegionalMap: release %ld, scenario %s\n"
+            "default 0;\n"
+            "regions\n(\n    polygons\n    {\n        file      \"%s\";\n        value     %.17g;\n"
+            "        measured  %s;\n    }\n);\n",
+            j->A->r[m->rel].id, j->c->s[m->scen].name, shp, m->depth, j->c->vertical ? "vertical" : "normal");
+    const int bad = fclose(out);
+    if (bad) snprintf(why, wsize, "cannot write %s", rd);
+    free(rd), free(shp);
+    return bad ? -1 : 0;
+}
+
+/* what a member that ran reached: the area above the threshold, the largest peak pressure */
+static int score(const job *j, const char *md, member *m, char *why, size_t wsize)
+{
+    static const char *need[] = {"hPeak.tif", "speedPeak.tif"};
+    char *hm = gf_path(md, "postProcessing/hazardMaps");
+    for (size_t k = 0; k < 2; ++k) {
+        char *f = gf_path(hm, need[k]);
+        const int e = gf_exists(f);
+        free(f);
+        if (!e) {
+            snprintf(why, wsize, "no postProcessing/hazardMaps/%s", need[k]);
+            free(hm);
+            return -1;
+        }
+    }
+    char *ppr = gf_path(hm, "pressurePeak.tif");
+    free(hm);
+    gf_raster r;
+    if (gf_raster_read(ppr, &r)) {
+        snprintf(why, wsize, "no peak pressure raster (%s)", gf_error_detail());
+        free(ppr);
+        return -1;
+    }
+    free(ppr);
+    const double cell = fabs(r.gt[1] * r.gt[5]);
+    double a = 0, p = 0;
+    for (size_t c = 0; c < (size_t)r.nx * (size_t)r.ny; ++c) {
+        if (isnan(r.z[c])) continue;
+        if (r.z[c] > j->c->threshold) a += cell;
+        if (r.z[c] > p) p = r.z[c];
+    }
+    gf_raster_free(&r);
+    m->affected = a, m->maxppr = p;
+    return 0;
+}
+
+static void *runner(void *arg)
+{
+    job *j = arg;
+    for (;;) {
+        pthread_mutex_lock(&j->lock);
+        size_t k = j->next;
+        while (k < j->nm && j->m[k].done) ++k;
+        j->next = k + 1;
+        pthread_mutex_unlock(&j->lock);
+        if (k >= j->nm) return NULL;
+        member *m = &j->m[k];
+        char md[4096], why[2048] = "";
+        member_dir(j, m, md, sizeof md);
+        const double t = now();
+        int ok = 0;
+        if (make_member(j, m, md, why, sizeof why) == 0) {
+            if (gf_workers_run(j->pool, md, &ok, why, sizeof why)) die("%s", gf_error_detail());
+            if (ok && score(j, md, m, why, sizeof why)) ok = 0;
+            gf_remove_times(md);
+        }
+        m->ok = ok;
+        m->seconds = now() - t;
+        if (!ok) snprintf(m->why, sizeof m->why, "%s", why);
+        for (char *p = m->why; *p; ++p)
+            if (*p == '\n' || *p == '\r') *p = ' ';
+        write_result(md, m);
+        pthread_mutex_lock(&j->lock);
+        m->done = 1;
+        ++j->finished;
+        if (ok)
+            printf("member %-20s %3zu/%zu: depth %.3f m, %.1f s, affected %.0f m2, max %.1f kPa\n", strrchr(md, '/') + 1,
+                   j->finished, j->total, m->depth, m->seconds, m->affected, m->maxppr);
+        else
+            printf("member %-20s %3zu/%zu: FAILED (%s)\n", strrchr(md, '/') + 1, j->finished, j->total, m->why);
+        fflush(stdout);
+        pthread_mutex_unlock(&j->lock);
+    }
+}
+
+/*---------------------------------------------------------------- the merge --*/
+
+static void write_tif(const char *dir, const char *name, const gf_raster *grid, const double *v)
+{
+    char *f = gf_path(dir, name);
+    char *tmp = NULL;
+    if (asprintf(&tmp, "%s.tmp.tif", f) < 0) die("out of memory");
+    if (gf_raster_write(tmp, "GTiff", grid, v)) die("%s: %s", f, gf_error_detail());
+    if (rename(tmp, f)) die("cannot write %s", f);
+    free(f), free(tmp);
+}
+
+/* the scenario's merged maps; the members merged */
+static size_t merge(const job *j, size_t s, char *outdir)
+{
+    const config *c = j->c;
+    size_t n = 0;
+    for (size_t k = 0; k < j->nm; ++k) n += j->m[k].scen == s && j->m[k].ok;
+    if (n == 0) return 0;
+    mkdir(outdir, 0755);
+    static const char *field[] = {"pressurePeak", "hPeak", "speedPeak"};
+    gf_raster grid;
+    memset(&grid, 0, sizeof grid);
+    for (size_t fi = 0; fi < 3; ++fi) {
+        gf_raster *r = calloc(n, sizeof *r);
+        const double **v = calloc(n, sizeof *v);
+        long *ids = calloc(n, sizeof *ids);
+        if (!r || !v || !ids) die("out of memory");
+        size_t i = 0;
+        for (size_t k = 0; k < j->nm; ++k) {
+            const member *m = &j->m[k];
+            if (m->scen != s || !m->ok) continue;
+            char md[4096], rel[256];
+            member_dir(j, m, md, sizeof md);
+            snprintf(rel, sizeof rel, "postProcessing/hazardMaps/%s.tif", field[fi]);
+            char *f = gf_path(md, rel);
+            if (gf_raster_read(f, &r[i])) die("%s: %s", f, gf_error_detail());
+            if (i > 0 && !gf_raster_same_grid(&r[i], &r[0])) die("%s: not on the grid of the scenario's other members", f);
+            free(f);
+            v[i] = r[i].z;
+            ids[i] = j->A->r[m->rel].id;
+            ++i;
+        }
+        const size_t nc = (size_t)r[0].nx * (size_t)r[0].ny;
+        double *mx = malloc(nc * sizeof *mx);
+        unsigned *count = fi == 0 ? malloc(nc * sizeof *count) : NULL;
+        long *who = fi == 0 ? malloc(nc * sizeof *who) : NULL;
+        if (!mx || (fi == 0 && (!count || !who))) die("out of memory");
+        if (gf_merge_max(n, nc, v, ids, c->threshold, mx, count, who)) die("merge: %s", gf_error_detail());
+        char name[64];
+        snprintf(name, sizeof name, "%sMax.tif", field[fi]);
+        write_tif(outdir, name, &r[0], mx);
+        if (fi == 0) {
+            double *a = malloc(nc * sizeof *a);
+            if (!a) die("out of memory");
+            for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) ? NAN : (double)count[q];
+            write_tif(outdir, "count.tif", &r[0], a);
+            for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) || !(mx[q] > 0) ? NAN : (double)who[q];
+            write_tif(outdir, "releaseId.tif", &r[0], a);
+            for (size_t q = 0; q < nc; ++q) {
+                if (isnan(mx[q])) {
+                    a[q] = NAN;
+                    continue;
+                }
+                size_t z = 0;
+                while (z < c->n_zones && mx[q] > c->zones[z]) ++z;
+                a[q] = (double)z;
+            }
+            write_tif(outdir, "zones.tif", &r[0], a);
+            free(a);
+        }
+        free(mx), free(count), free(who);
+        for (size_t q = 0; q < n; ++q) gf_raster_free(&r[q]);
+        free(r), free(v), free(ids);
+    }
+    return n;
+}
+
+/*---------------------------------------------------------------- main --*/
+
+static void check_path(const char *what, const char *path)
+{
+    for (const char *p = path; *p; ++p)
+        if (*p == ' ' || *p == '\t' || *p == '\n' || *p == '"' || *p == '\'')
+            die("%s '%s': a blank or a quote in the path; OpenFOAM drops them from file names: move or rename it",
+                what, path);
+}
+
+static void make_template(const job *j, const char *casedir)
+{
+    if (gf_exists(j->templ)) return;
+    char *tmp = NULL;
+    if (asprintf(&tmp, "%s.tmp", j->templ) < 0) die("out of memory");
+    char *rm[] = {"rm", "-rf", tmp, NULL};
+    gf_run(rm, NULL);
+    gf_case_controls ctl;
+    char err[2048];
+    if (gf_member_template(casedir, tmp, &ctl, err, sizeof err)) die("%s", err);
+    if (!ctl.sets_release)
+        die("%s/system/controlDict does not set the release at the start (setFields (releaseDict);): a member's "
+            "release could not act",
+            casedir);
+    char *cd = gf_path(tmp, "system/controlDict");
+    if (ctl.has_path_analysis) {
+        /* the case's path is that of its own release, not of every release area */
+        char *log = gf_path(j->dir, "log.template");
+        char *fd[] = {"foamDictionary", "-entry", "pathAnalysis", "-remove", cd, NULL};
+        if (gf_run(fd, log)) die("cannot remove pathAnalysis from %s (foamDictionary; %s)", cd, log);
+        free(log);
+    }
+    char text[512];
+    snprintf(text, sizeof text,
+             "\n// gfRegionalMap: the members' controls\nwriteInterval %s;\npeakFields yes;\nhazardMaps yes;\n",
+             ctl.end_time);
+    if (gf_append(cd, text)) die("cannot write %s", cd);
+    if (rename(tmp, j->templ)) die("cannot rename %s", tmp);
+    free(tmp), free(cd);
+}
+
+static void usage(int st)
+{
+    FILE *f = st ? stderr : stdout;
+    fprintf(f,
+            "usage: gfRegionalMap [-dict FILE] [-out DIR] [-np N] [-check] CASE\n"
+            "       gfRegionalMap -help | -version\n\n"
+            "Every release area x scenario of FILE (default CASE/system/regionalDict) run as\n"
+            "a member of the meshed terrain case CASE on N ensemble workers (default: the\n"
+            "cores), merged per scenario into DIR/SCENARIO/{pressurePeakMax,hPeakMax,\n"
+            "speedPeakMax,count,releaseId,zones}.tif; DIR/members.csv, DIR/summary.txt\n"
+            "(DIR default CASE-regional).  Started again, members with a result are read,\n"
+            "not run.  -check: the dictionary and the polygons checked, each member's depth\n"
+            "printed, nothing written.  The dictionary's format: the header of\n"
+            "applications/utilities/gfRegionalMap/gfRegionalMap.c, doc/guide/regional.md.\n");
+    exit(st);
+}
+
+int main(int argc, char **argv)
+{
+    long np = sysconf(_SC_NPROCESSORS_ONLN);
+    const char *dictp = NULL, *out = NULL, *casedir = NULL;
+    int check_only = 0;
+    for (int i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "-np") == 0 && i + 1 < argc) {
+            double v;
+            if (!gf_parse_number(argv[++i], &v) || v != floor(v) || v < 1 || v > 256)
+                die("-np %s: a whole number in [1, 256]", argv[i]);
+            np = (long)v;
+        } else if (strcmp(argv[i], "-dict") == 0 && i + 1 < argc) {
+            dictp = argv[++i];
+        } else if (strcmp(argv[i], "-out") == 0 && i + 1 < argc) {
+            out = argv[++i];
+        } else if (strcmp(argv[i], "-check") == 0) {
+            check_only = 1;
+        } else if (strcmp(argv[i], "-help") == 0 || strcmp(argv[i], "--help") == 0) {
+            usage(0);
+        } else if (strcmp(argv[i], "-version") == 0) {
+            printf("%s %s\n", prog, gf_version());
+            return 0;
+        } else if (argv[i][0] == '-') {
+            fprintf(stderr, "%s: unknown option %s\n", prog, argv[i]);
+            usage(2);
+        } else if (!casedir) {
+            casedir = argv[i];
+        } else {
+            usage(2);
+        }
+    }
+    if (!casedir) usage(2);
+    char *casereal = realpath(casedir, NULL);
+    if (!casereal) die("%s: %s", casedir, strerror(errno));
+    {
+        char *pm = gf_path(casereal, "constant/polyMesh");
+        if (!gf_exists(pm)) die("%s: not a meshed case (no constant/polyMesh)", casereal);
+        free(pm);
+    }
+    char *dp = dictp ? strdup(dictp) : gf_path(casereal, "system/regionalDict");
+    if (!gf_exists(dp)) die("%s: no such dictionary (-dict FILE, default CASE/system/regionalDict)", dp);
+    GDALAllRegister();
+    CPLSetErrorHandler(CPLQuietErrorHandler);
+    config c;
+    read_config(dp, casereal, &c);
+    areas A;
+    read_areas(&c, &A);
+
+    /* the members: release-major within each scenario, in the file's order */
+    job j;
+    memset(&j, 0, sizeof j);
+    j.c = &c, j.A = &A;
+    j.nm = c.ns * A.n;
+    j.m = calloc(j.nm, sizeof *j.m);
+    if (!j.m) die("out of memory");
+    size_t nbad = 0;
+    for (size_t s = 0; s < c.ns; ++s)
+        for (size_t r = 0; r < A.n; ++r) {
+            member *m = &j.m[s * A.n + r];
+            m->rel = r, m->scen = s;
+            if (depth(&c, &A.r[r], s, &m->depth, m->why, sizeof m->why)) m->pre_failed = 1, ++nbad;
+        }
+    if (check_only) {
+        printf("gfRegionalMap -check: %s: %zu releases x %zu scenarios = %zu members (%zu refused)\n", dp, A.n, c.ns,
+               j.nm, nbad);
+        for (size_t k = 0; k < j.nm; ++k) {
+            const member *m = &j.m[k];
+            if (m->pre_failed)
+                printf("  %s_r%ld: refused: %s\n", c.s[m->scen].name, A.r[m->rel].id, m->why);
+            else
+                printf("  %s_r%ld: depth %.3f m\n", c.s[m->scen].name, A.r[m->rel].id, m->depth);
+        }
+        return 0;
+    }
+    check_path("the case", casereal);
+    if (out) {
+        j.dir = strdup(out);
+    } else if (asprintf(&j.dir, "%s-regional", casereal) < 0) {
+        die("out of memory");
+    }
+    check_path("-out", j.dir);
+    if (mkdir(j.dir, 0755) && errno != EEXIST) die("%s: cannot make the folder: %s", j.dir, strerror(errno));
+    char *absdir = realpath(j.dir, NULL);
+    if (!absdir) die("%s: %s", j.dir, strerror(errno));
+    free(j.dir);
+    j.dir = absdir;
+    {
+        /* the dictionary beside the results; another batch's folder is not mixed with this one */
+        char *copy = gf_path(j.dir, "regionalDict");
+        if (gf_exists(copy)) {
+            char *cmp[] = {"cmp", "-s", dp, copy, NULL};
+            if (gf_run(cmp, NULL) != 0)
+                die("%s holds the results of another batch (its regionalDict differs from %s): give another -out, "
+                    "or remove it to start again",
+                    j.dir, dp);
+        } else {
+            char *cp[] = {"cp", dp, copy, NULL};
+            if (gf_run(cp, NULL)) die("cannot write %s", copy);
+        }
+        free(copy);
+    }
+    j.templ = gf_path(j.dir, "template");
+    j.members = gf_path(j.dir, "members");
+    mkdir(j.members, 0755);
+    make_template(&j, casereal);
+
+    /* the results there are; the refused depths are results too */
+    size_t resumed = 0;
+    for (size_t k = 0; k < j.nm; ++k) {
+        member *m = &j.m[k];
+        char md[4096];
+        member_dir(&j, m, md, sizeof md);
+        if (m->pre_failed) {
+            m->done = 1, m->ok = 0;
+            continue;
+        }
+        const double d = m->depth;
+        if (read_result(md, m)) {
+            ++resumed;
+            m->depth = d;
+        }
+    }
+    j.total = j.nm;
+    j.finished = resumed + nbad;
+    const size_t torun = j.nm - j.finished;
+    printf("gfRegionalMap: %zu releases x %zu scenarios = %zu members: %zu resumed, %zu refused, %zu to run on %ld "
+           "workers (%s)\n",
+           A.n, c.ns, j.nm, resumed, nbad, torun, torun ? (np < (long)torun ? np : (long)torun) : 0L, j.dir);
+    for (size_t k = 0; k < j.nm; ++k)
+        if (j.m[k].pre_failed)
+            printf("member %s_r%ld: FAILED (%s)\n", c.s[j.m[k].scen].name, A.r[j.m[k].rel].id, j.m[k].why);
+    fflush(stdout);
+    j.t0 = now();
+    if (torun) {
+        const size_t nw = (size_t)np < torun ? (size_t)np : torun;
+        char *logfmt = gf_path(j.dir, "log.worker_%u");
+        char *argvw[] = {"faGranularFlowFoam", "-case", casereal, "-members", "-", NULL};
+        if (gf_workers_start(nw, argvw, logfmt, &j.pool)) die("workers: %s", gf_error_detail());
+        pthread_mutex_init(&j.lock, NULL);
+        pthread_t *th = malloc(nw * sizeof *th);
+        for (size_t t = 0; t < nw; ++t)
+            if (pthread_create(&th[t], NULL, runner, &j)) die("cannot start a thread");
+        for (size_t t = 0; t < nw; ++t) pthread_join(th[t], NULL);
+        if (gf_workers_stop(j.pool)) fprintf(stderr, "%s: %s\n", prog, gf_error_detail());
+        free(th), free(logfmt);
+    }
+    const double wall = now() - j.t0;
+
+    /* the merge and the tables */
+    size_t nfailed = 0, nran = 0;
+    double sec_sum = 0;
+    for (size_t k = 0; k < j.nm; ++k) {
+        nfailed += !j.m[k].ok;
+        if (j.m[k].ok) sec_sum += j.m[k].seconds, ++nran;
+    }
+    char *csv = gf_path(j.dir, "members.csv");
+    FILE *o = fopen(csv, "w");
+    if (!o) die("cannot write %s", csv);
+    fprintf(o, "release,scenario,depth_m,status,seconds,affected_m2,maxPressure_kPa,reason\n");
+    for (size_t k = 0; k < j.nm; ++k) {
+        const member *m = &j.m[k];
+        fprintf(o, "%ld,%s,%.4f,%s,%.2f,", A.r[m->rel].id, c.s[m->scen].name, m->depth, m->ok ? "ok" : "failed",
+                m->seconds);
+        if (m->ok)
+            fprintf(o, "%.1f,%.3f,\n", m->affected, m->maxppr);
+        else {
+            fprintf(o, ",,\"");
+            for (const char *p = m->why; *p; ++p) fputc(*p == '"' ? '\'' : *p, o);
+            fprintf(o, "\"\n");
+        }
+    }
+    fclose(o);
+    char *sum = gf_path(j.dir, "summary.txt");
+    FILE *S = fopen(sum, "w");
+    if (!S) die("cannot write %s", sum);
+    fprintf(S, "gfRegionalMap %s: %s\nreleases %zu (%s, id %s), scenarios %zu, members %zu: %zu ok, %zu failed\n",
+            gf_version(), dp, A.n, c.areas, c.id_attr, c.ns, j.nm, j.nm - nfailed, nfailed);
+    fprintf(S, "threshold %g kPa; zones", c.threshold);
+    for (size_t z = 0; z < c.n_zones; ++z) fprintf(S, " %g", c.zones[z]);
+    fprintf(S, " kPa\n");
+    for (size_t s = 0; s < c.ns; ++s) {
+        char *od = gf_path(j.dir, c.s[s].name);
+        const size_t nmg = merge(&j, s, od);
+        double amax = 0, pmax = 0;
+        for (size_t k = 0; k < j.nm; ++k)
+            if (j.m[k].scen == s && j.m[k].ok) {
+                if (j.m[k].affected > amax) amax = j.m[k].affected;
+                if (j.m[k].maxppr > pmax) pmax = j.m[k].maxppr;
+            }
+        fprintf(S, "scenario %s: %zu members merged into %s/ (largest affected area %.0f m2, largest peak pressure %.1f kPa)\n",
+                c.s[s].name, nmg, c.s[s].name, amax, pmax);
+        printf("scenario %s: %zu members merged (%s)\n", c.s[s].name, nmg, od);
+        free(od);
+    }
+    for (size_t k = 0; k < j.nm; ++k)
+        if (!j.m[k].ok)
+            fprintf(S, "FAILED %s_r%ld: %s\n", c.s[j.m[k].scen].name, A.r[j.m[k].rel].id, j.m[k].why);
+    fclose(S);
+    const size_t ran_now = torun;
+    printf("members=%zu\nran=%zu\nresumed=%zu\nfailed=%zu\nseconds=%.1f\nsecondsPerMember=%.2f\n", j.nm, ran_now,
+           resumed, nfailed, wall, nran ? sec_sum / (double)nran : 0.0);
+    free(csv), free(sum);
+    return nfailed ? 3 : 0;
+}
