@@ -544,9 +544,9 @@ static int make_member(const job *j, const member *m, const char *md, char *why,
             "FoamFile { version 2.0; format ascii; class dictionary; location \"system\"; object releaseDict; }\n"
             "// gfRegionalMap: release %ld, scenario %s\n"
             "default 0;\n"
-            "regions\n(\n    polygons\n    {\n        file      \"%s\";\n        value     %.17g;\n"
-            "        measured  %s;\n    }\n);\n",
-            j->A->r[m->rel].id, j->c->s[m->scen].name, shp, m->depth, j->c->vertical ? "vertical" : "normal");
+            "regions\n(\n    polygons\n    {\n        file      \"release.shp\";   // in the member's folder\n"
+            "        value     %.17g;\n        measured  %s;\n    }\n);\n",
+            j->A->r[m->rel].id, j->c->s[m->scen].name, m->depth, j->c->vertical ? "vertical" : "normal");
     const int bad = fclose(out);
     if (bad) snprintf(why, wsize, "cannot write %s", rd);
     free(rd), free(shp);
