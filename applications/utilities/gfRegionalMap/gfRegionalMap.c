@@ -4,7 +4,7 @@
  * on the ensemble workers and merged into regional hazard indication maps
  * (issue 52; doc/guide/regional.md, doc/theory/regional.md):
  *
- *   gfRegionalMap [-dict FILE] [-out DIR] [-np N] [-check] CASE
+ *   gfRegionalMap [-dict FILE] [-out DIR] [-np N] [-check] [-alphaBeta] CASE
  *   gfRegionalMap -help | -version
  *
  * CASE is a meshed terrain case whose system/controlDict sets the release
@@ -59,6 +59,20 @@
  *
  * -check reads the dictionary and the polygons and prints every member with
  * its depth, writing nothing.
+ *
+ * -alphaBeta: each release's steepest-descent thalweg from its highest cell
+ * of the case's DEM (constant/terrainProperties dem; D8 through pits up to
+ * 5 m deep, on along level ground for 1000 m, as gfReleaseAreas), its
+ * alpha-beta runout (Lied and Bakkehoi 1980; gf_alpha_beta_profile's
+ * defaults) and beside it each member's dynamic runout: the farthest
+ * thalweg point whose peak pressure exceeds the threshold.  DIR/alphaBeta.csv
+ * (release, scenario, status, z_top_m, beta_deg, alpha_deg, s_beta_m,
+ * s_alpha_m, s_alpha_minus_sd_m, s_alpha_plus_sd_m, s_thalweg_m,
+ * s_dynamic_m, dynamic_minus_alpha_m, reason; distances along the thalweg
+ * from the top, horizontal; empty where there is none: s_alpha when the
+ * alpha line meets no terrain before the thalweg ends, reason when the
+ * release has a thalweg and alpha-beta); the releases' polygons in
+ * DIR/releases/.
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -706,6 +720,138 @@ static size_t merge(const job *j, size_t s, char *outdir)
     return n;
 }
 
+/*---------------------------------------------------------------- -alphaBeta --*/
+
+/* the DEM of the case (constant/terrainProperties dem, relative to the case) */
+static void case_dem(const job *j, const char *casedir, gf_raster *dem)
+{
+    char *tp = gf_path(casedir, "constant/terrainProperties"), *val = gf_path(j->dir, "alphaBeta.dem");
+    unlink(val);
+    char *fd[] = {"foamDictionary", "-entry", "dem", "-value", tp, NULL};
+    if (gf_run(fd, val)) die("-alphaBeta: no dem entry in %s (foamDictionary)", tp);
+    FILE *in = fopen(val, "r");
+    char line[4096] = "";
+    if (!in || !fgets(line, sizeof line, in)) die("-alphaBeta: no dem entry in %s", tp);
+    fclose(in);
+    unlink(val);
+    line[strcspn(line, "\r\n")] = 0;
+    char *b = line, *e = line + strlen(line);
+    while (*b == '"' || *b == ' ') ++b;
+    while (e > b && (e[-1] == '"' || e[-1] == ' ')) *--e = 0;
+    char *path = b[0] == '/' ? strdup(b) : gf_path(casedir, b);
+    if (gf_raster_read(path, dem)) die("-alphaBeta: the case's DEM %s: %s", path, gf_error_detail());
+    free(tp), free(val), free(path);
+}
+
+/* Each release's steepest-descent thalweg from its highest DEM cell, its
+ * alpha-beta runout, and beside it each member's dynamic runout: the
+ * farthest thalweg point where the member's peak pressure exceeds the
+ * threshold.  DIR/alphaBeta.csv. */
+static void alpha_beta(const job *j, const char *casedir)
+{
+    const config *c = j->c;
+    gf_raster dem;
+    case_dem(j, casedir, &dem);
+    gf_alpha_beta_params p;
+    gf_alpha_beta_params_default(&p);
+    char *rd = gf_path(j->dir, "releases");
+    mkdir(rd, 0755);
+    char *csv = gf_path(j->dir, "alphaBeta.csv");
+    FILE *o = fopen(csv, "w");
+    if (!o) die("cannot write %s", csv);
+    fprintf(o, "release,scenario,status,z_top_m,beta_deg,alpha_deg,s_beta_m,s_alpha_m,s_alpha_minus_sd_m,"
+               "s_alpha_plus_sd_m,s_thalweg_m,s_dynamic_m,dynamic_minus_alpha_m,reason\n");
+    unsigned char *mask = malloc((size_t)dem.nx * (size_t)dem.ny);
+    if (!mask) die("out of memory");
+    size_t rows = 0;
+    for (size_t r = 0; r < j->A->n; ++r) {
+        const release *R = &j->A->r[r];
+        char name[64], why[1024] = "";
+        snprintf(name, sizeof name, "r%ld.shp", R->id);
+        char *shp = gf_path(rd, name);
+        if (write_release_shp(j->A, R, shp, why, sizeof why)) die("%s", why);
+        gf_polygons P;
+        if (gf_polygons_read(shp, NULL, 1, &P)) die("%s: %s", shp, gf_error_detail());
+        gf_polygons_mask(&P, &dem, mask);
+        gf_polygons_free(&P);
+        free(shp);
+        long top = -1;
+        for (size_t q = 0; q < (size_t)dem.nx * (size_t)dem.ny; ++q)
+            if (mask[q] && !isnan(dem.z[q]) && (top < 0 || dem.z[q] > dem.z[top])) top = (long)q;
+        gf_alpha_beta ab;
+        double *xyzs = NULL;
+        size_t n = 0;
+        int ok = top >= 0;
+        if (!ok) snprintf(why, sizeof why, "no DEM cell in the polygon");
+        if (ok && gf_thalweg_d8(&dem, (int)(top % dem.nx), (int)(top / dem.nx), 5, 1000, &xyzs, &n)) {
+            snprintf(why, sizeof why, "thalweg: %s", gf_error_detail());
+            ok = 0;
+        }
+        double *s = NULL, *z = NULL;
+        if (ok) {
+            s = malloc(n * sizeof *s), z = malloc(n * sizeof *z);
+            if (!s || !z) die("out of memory");
+            for (size_t i = 0; i < n; ++i) z[i] = xyzs[4 * i + 2], s[i] = xyzs[4 * i + 3];
+            if (gf_alpha_beta_profile(n, s, z, &p, &ab)) {
+                snprintf(why, sizeof why, "alpha-beta: %s", gf_error_detail());
+                ok = 0;
+            }
+        }
+        for (size_t k = 0; k < j->nm; ++k) {
+            const member *m = &j->m[k];
+            if (m->rel != r) continue;
+            fprintf(o, "%ld,%s,", R->id, c->s[m->scen].name);
+            if (!ok) {
+                fprintf(o, "%s,,,,,,,,,,,\"%s\"\n", m->ok ? "ok" : "failed", why);
+                continue;
+            }
+            double sdyn = NAN;
+            if (m->ok) {
+                char md[4096];
+                member_dir(j, m, md, sizeof md);
+                char *f = gf_path(md, "postProcessing/hazardMaps/pressurePeak.tif");
+                gf_raster pr;
+                if (gf_raster_read(f, &pr)) die("%s: %s", f, gf_error_detail());
+                free(f);
+                sdyn = 0;
+                for (size_t i = 0; i < n; ++i) {
+                    const double col = floor((xyzs[4 * i] - pr.gt[0]) / pr.gt[1]);
+                    const double row = floor((xyzs[4 * i + 1] - pr.gt[3]) / pr.gt[5]);
+                    if (col < 0 || row < 0 || col >= pr.nx || row >= pr.ny) continue;
+                    const double v = pr.z[(size_t)row * (size_t)pr.nx + (size_t)col];
+                    if (v > c->threshold) sdyn = s[i];
+                }
+                gf_raster_free(&pr);
+            }
+            fprintf(o, "%s,%.2f,%.3f,%.3f,%.1f,", m->ok ? "ok" : "failed", z[0], ab.beta, ab.alpha, ab.s_beta);
+            for (int q = 0; q < 3; ++q)
+                isnan(ab.s_alpha[q]) ? fprintf(o, ",") : fprintf(o, "%.1f,", ab.s_alpha[q]);
+            fprintf(o, "%.1f,", s[n - 1]);
+            if (isnan(sdyn))
+                fprintf(o, ",,\n");
+            else if (isnan(ab.s_alpha[0]))
+                fprintf(o, "%.1f,,\n", sdyn);
+            else
+                fprintf(o, "%.1f,%.1f,\n", sdyn, sdyn - ab.s_alpha[0]);
+            ++rows;
+        }
+        if (ok && !isnan(ab.s_alpha[0]))
+            printf("alphaBeta r%ld: beta %.2f deg, alpha %.2f deg, alpha runout s = %.0f m along the thalweg\n", R->id,
+                   ab.beta, ab.alpha, ab.s_alpha[0]);
+        else if (ok)
+            printf("alphaBeta r%ld: beta %.2f deg, alpha %.2f deg, the alpha line meets no terrain before the "
+                   "thalweg's end (%.0f m)\n",
+                   R->id, ab.beta, ab.alpha, s[n - 1]);
+        else
+            printf("alphaBeta r%ld: %s\n", R->id, why);
+        free(xyzs), free(s), free(z);
+    }
+    if (fclose(o)) die("cannot write %s", csv);
+    printf("alphaBeta=%s (%zu rows)\n", csv, rows);
+    free(mask), free(rd), free(csv);
+    gf_raster_free(&dem);
+}
+
 /*---------------------------------------------------------------- main --*/
 
 static void check_path(const char *what, const char *path)
@@ -751,7 +897,7 @@ static void usage(int st)
 {
     FILE *f = st ? stderr : stdout;
     fprintf(f,
-            "usage: gfRegionalMap [-dict FILE] [-out DIR] [-np N] [-check] CASE\n"
+            "usage: gfRegionalMap [-dict FILE] [-out DIR] [-np N] [-check] [-alphaBeta] CASE\n"
             "       gfRegionalMap -help | -version\n\n"
             "Every release area x scenario of FILE (default CASE/system/regionalDict) run as\n"
             "a member of the meshed terrain case CASE on N ensemble workers (default: the\n"
@@ -759,7 +905,8 @@ static void usage(int st)
             "speedPeakMax,count,releaseId,zones}.tif; DIR/members.csv, DIR/summary.txt\n"
             "(DIR default CASE-regional).  Started again, members with a result are read,\n"
             "not run.  -check: the dictionary and the polygons checked, each member's depth\n"
-            "printed, nothing written.  The dictionary's format: the header of\n"
+            "printed, nothing written.  -alphaBeta: each release's alpha-beta runout beside\n"
+            "its members' dynamic runout along its thalweg (DIR/alphaBeta.csv).  The dictionary's format: the header of\n"
             "applications/utilities/gfRegionalMap/gfRegionalMap.c, doc/guide/regional.md.\n");
     exit(st);
 }
@@ -768,7 +915,7 @@ int main(int argc, char **argv)
 {
     long np = sysconf(_SC_NPROCESSORS_ONLN);
     const char *dictp = NULL, *out = NULL, *casedir = NULL;
-    int check_only = 0;
+    int check_only = 0, with_ab = 0;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "-np") == 0 && i + 1 < argc) {
             double v;
@@ -781,6 +928,8 @@ int main(int argc, char **argv)
             out = argv[++i];
         } else if (strcmp(argv[i], "-check") == 0) {
             check_only = 1;
+        } else if (strcmp(argv[i], "-alphaBeta") == 0) {
+            with_ab = 1;
         } else if (strcmp(argv[i], "-help") == 0 || strcmp(argv[i], "--help") == 0) {
             usage(0);
         } else if (strcmp(argv[i], "-version") == 0) {
@@ -962,6 +1111,7 @@ int main(int argc, char **argv)
         if (!j.m[k].ok)
             fprintf(S, "FAILED %s_r%ld: %s\n", c.s[j.m[k].scen].name, A.r[j.m[k].rel].id, j.m[k].why);
     fclose(S);
+    if (with_ab) alpha_beta(&j, casereal);
     const size_t ran_now = torun;
     printf("members=%zu\nran=%zu\nresumed=%zu\nfailed=%zu\nseconds=%.1f\nsecondsPerMember=%.2f\n", j.nm, ran_now,
            resumed, nfailed, wall, nran ? sec_sum / (double)nran : 0.0);
