@@ -447,7 +447,7 @@ typedef struct member {
     size_t rel, scen;
     double depth;
     int pre_failed;       /* the depth was refused: never run */
-    char why[1024];
+    char why[2048];
     /* the result */
     int done, ok, resumed;
     double seconds, affected, maxppr;
@@ -893,6 +893,16 @@ static void make_template(const job *j, const char *casedir)
     free(tmp), free(cd);
 }
 
+static void free_all(config *c, areas *A, job *j, char *casereal, char *dp)
+{
+    for (size_t k = 0; k < A->n; ++k) OGR_G_DestroyGeometry(A->r[k].geom);
+    free(A->r);
+    if (A->srs) OSRRelease(A->srs);
+    free(c->areas), free(c->only);
+    free(j->m), free(j->dir), free(j->templ), free(j->members);
+    free(casereal), free(dp);
+}
+
 static void usage(int st)
 {
     FILE *f = st ? stderr : stdout;
@@ -985,6 +995,7 @@ int main(int argc, char **argv)
             else
                 printf("  %s_r%ld: depth %.3f m\n", c.s[m->scen].name, A.r[m->rel].id, m->depth);
         }
+        free_all(&c, &A, &j, casereal, dp);
         return 0;
     }
     check_path("the case", casereal);
@@ -1116,5 +1127,6 @@ int main(int argc, char **argv)
     printf("members=%zu\nran=%zu\nresumed=%zu\nfailed=%zu\nseconds=%.1f\nsecondsPerMember=%.2f\n", j.nm, ran_now,
            resumed, nfailed, wall, nran ? sec_sum / (double)nran : 0.0);
     free(csv), free(sum);
+    free_all(&c, &A, &j, casereal, dp);
     return nfailed ? 3 : 0;
 }
