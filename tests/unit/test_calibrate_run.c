@@ -42,6 +42,9 @@ typedef struct member_ctx {
      * until `meet` of them are under way at once: the threads run together */
     size_t meet, refine0, refine_evals;
     atomic_int met_design, met_refine;
+    /* this index waits until the error's evaluation has been called */
+    size_t hold_index;
+    atomic_int error_called;
 } member_ctx;
 
 /* the bowl: sum ((u_j - c_j) / s_j)^2, minimum 0 at c; the valley
@@ -74,11 +77,15 @@ static gf_status failing_call(void)
     return gf_design_sobol(1, GF_SOBOL_MAX_DIM + 1, 0, u); /* GF_EINVAL, its detail set */
 }
 
+static atomic_int gave_up; /* a rendezvous that failed: the others do not wait */
+
 static void meet_others(const member_ctx *m, atomic_int *met)
 {
     atomic_fetch_add(met, 1);
-    for (long spin = 0; spin < 20000000L && atomic_load(met) < (int)m->meet; ++spin)
+    for (long spin = 0; spin < 2000000L && !atomic_load(&gave_up) && atomic_load(met) < (int)m->meet; ++spin)
         sched_yield();
+    if (atomic_load(met) < (int)m->meet)
+        atomic_store(&gave_up, 1);
 }
 
 static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf_calib_eval *out)
@@ -102,9 +109,16 @@ static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf
         atomic_fetch_add(&m->calls[index], 1);
         memcpy(m->seen_u + index * d, u, d * sizeof *u);
     }
+    if (index == m->hold_index) {
+        for (long spin = 0; spin < 2000000L && !atomic_load(&m->error_called); ++spin)
+            sched_yield();
+        for (int k = 0; k < 200; ++k)
+            sched_yield();
+    }
     gf_status st = GF_SUCCESS;
     if (index == m->error_at && !m->nonfinite_at_error) {
         st = failing_call();
+        atomic_store(&m->error_called, 1);
     } else if (index == m->error_at) {
         out->ok = 1, out->loss = NAN, out->accepted = 0;
     } else if (member_fails(m, index, u)) {
@@ -138,6 +152,7 @@ static void member_init(member_ctx *m, const gf_calib_plan *p, int kind, double 
     m->fail_index = SIZE_MAX;
     m->fail_above = 2;
     m->error_at = SIZE_MAX;
+    m->hold_index = SIZE_MAX;
     m->d = p->d;
     m->cap = plan_n(p) + 16;
     m->calls = calloc(m->cap, sizeof *m->calls);
@@ -151,6 +166,7 @@ static void member_init(member_ctx *m, const gf_calib_plan *p, int kind, double 
     atomic_init(&m->max_concurrent, 0);
     atomic_init(&m->met_design, 0);
     atomic_init(&m->met_refine, 0);
+    atomic_init(&m->error_called, 0);
 }
 
 static void member_reset(member_ctx *m)
@@ -162,6 +178,7 @@ static void member_reset(member_ctx *m)
     atomic_store(&m->max_concurrent, 0);
     atomic_store(&m->met_design, 0);
     atomic_store(&m->met_refine, 0);
+    atomic_store(&m->error_called, 0);
 }
 
 static void member_free(member_ctx *m)
@@ -758,6 +775,15 @@ static void exploration_box_holds_the_accepted_and_stops_when_it_no_longer_grows
                   blo[0], bhi[0], blo[1], bhi[1]);
     gf_calib_run_free(&run);
 
+    /* the bowl mirrored (centre (0.7, 0.3)): the box grows the other way */
+    member_reset(&m);
+    m.c[0] = 0.7, m.c[1] = 0.3;
+    assert_int_equal(gf_calibrate_run(&p, evaluate, &m, &run), GF_SUCCESS);
+    check_run(&p, &m, &run);
+    assert_true(check_exploration(&p, &run) >= 2);
+    gf_calib_run_free(&run);
+    m.c[0] = 0.3, m.c[1] = 0.7;
+
     /* everything accepted: the whole box at once, one round of five */
     member_reset(&m);
     m.eps = 1e9;
@@ -847,6 +873,29 @@ static void callback_error_stops_the_run_with_its_detail(void **state)
             assert_true(unused(&run.ev[at[c]]));
             gf_calib_run_free(&run);
         }
+    }
+    /* an error in one refinement stops the other under way: refinement 0
+     * (a budget of 200, never converged) holds at its 6th evaluation until
+     * refinement 1's 4th has failed, then makes at most a few more */
+    {
+        gf_calib_plan q = p;
+        q.threads = 2;
+        q.refine_evals = 200;
+        q.tol = 1e-300;
+        member_ctx h;
+        member_init(&h, &q, LOSS_BOWL, 0.05);
+        h.error_at = gf_calib_refine_index(&q, 1, 3);
+        h.hold_index = gf_calib_refine_index(&q, 0, 5);
+        gf_calib_run run;
+        assert_int_equal(gf_calibrate_run(&q, evaluate, &h, &run), GF_EINVAL);
+        assert_string_equal(gf_error_detail(), want);
+        assert_int_equal(atomic_load(&h.error_called), 1);
+        size_t made0 = 0;
+        for (size_t j = 0; j < q.refine_evals; ++j)
+            made0 += (size_t)atomic_load(&h.calls[gf_calib_refine_index(&q, 0, j)]);
+        assert_true(made0 >= 6 && made0 < 50);
+        gf_calib_run_free(&run);
+        member_free(&h);
     }
     /* ok with a NaN loss */
     member_reset(&m);
