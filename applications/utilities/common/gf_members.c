@@ -56,6 +56,11 @@ char *gf_path(const char *a, const char *b)
     return r;
 }
 
+int gf_path_foam_safe(const char *path)
+{
+    return strpbrk(path, " \t\n\"'") == NULL;
+}
+
 int gf_append(const char *file, const char *text)
 {
     FILE *f = fopen(file, "a");

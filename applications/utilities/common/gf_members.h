@@ -23,6 +23,10 @@ int gf_exists(const char *path);
 /* "a/b", malloc'ed (the program stops with a message when out of memory). */
 char *gf_path(const char *a, const char *b);
 
+/* 1 when an OpenFOAM case can lie in path: no blank and no quote
+ * (OpenFOAM v1912 drops them from file names, fileName::stripInvalid). */
+int gf_path_foam_safe(const char *path);
+
 /* Append text to a file; 0, or -1 when it cannot be written. */
 int gf_append(const char *file, const char *text);
 

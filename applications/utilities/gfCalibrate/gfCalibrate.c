@@ -705,10 +705,9 @@ static void check_entries(const char *casedir, const config *c)
  * quotes from file names (fileName::stripInvalid) */
 static void check_path(const char *what, const char *path)
 {
-    for (const char *p = path; *p; ++p)
-        if (*p == ' ' || *p == '\t' || *p == '\n' || *p == '"' || *p == '\'')
-            die("%s '%s': a blank or a quote in the path; OpenFOAM drops them from file names: move or rename it",
-                what, path);
+    if (!gf_path_foam_safe(path))
+        die("%s '%s': a blank or a quote in the path; OpenFOAM drops them from file names: move or rename it",
+            what, path);
 }
 
 /* the template: the case's system/, 0/ and constant/ (meshes linked), its

@@ -856,10 +856,9 @@ static void alpha_beta(const job *j, const char *casedir)
 
 static void check_path(const char *what, const char *path)
 {
-    for (const char *p = path; *p; ++p)
-        if (*p == ' ' || *p == '\t' || *p == '\n' || *p == '"' || *p == '\'')
-            die("%s '%s': a blank or a quote in the path; OpenFOAM drops them from file names: move or rename it",
-                what, path);
+    if (!gf_path_foam_safe(path))
+        die("%s '%s': a blank or a quote in the path; OpenFOAM drops them from file names: move or rename it",
+            what, path);
 }
 
 static void make_template(const job *j, const char *casedir)
