@@ -1,11 +1,17 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* granflow — OpenFOAM-style dictionaries for the C programs (gf_dict.h). */
+#define _GNU_SOURCE /* program_invocation_short_name */
 #include "gf_dict.h"
 
 #include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "granflow/status.h" /* gf_parse_number */
 
 typedef struct lexer {
     const char *s;
@@ -287,4 +293,105 @@ const gf_dict_entry *gf_dict_unused(const gf_dict *d, const gf_dict **in)
         }
     }
     return NULL;
+}
+
+/*---------------------------------------------------------- typed readers --*/
+
+void gf_dict_refuse(const char *path, const gf_dict_entry *e, const char *key, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "%s: %s", program_invocation_short_name, path);
+    if (e) fprintf(stderr, ":%d", e->line);
+    fprintf(stderr, ": %s: ", key);
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\n");
+    va_end(ap);
+    exit(1);
+}
+
+void gf_dict_key_path(const gf_dict *d, const char *key, char *out, size_t size)
+{
+    snprintf(out, size, "%s%s%s", d->name, *d->name ? "/" : "", key);
+}
+
+double gf_dict_number(const gf_dict *d, const char *key, double def, double lo, double hi)
+{
+    char full[256];
+    gf_dict_key_path(d, key, full, sizeof full);
+    const gf_dict_entry *e = gf_dict_find(d, key);
+    if (!e) {
+        if (isnan(def)) gf_dict_refuse(d->path, NULL, full, "required (a number in [%g, %g])", lo, hi);
+        return def;
+    }
+    double v;
+    if (e->sub || e->ntok != 1 || !gf_parse_number(e->tok[0], &v))
+        gf_dict_refuse(d->path, e, full, "expected one number in [%g, %g]", lo, hi);
+    if (!(v >= lo && v <= hi)) gf_dict_refuse(d->path, e, full, "%g is outside the allowed range [%g, %g]", v, lo, hi);
+    return v;
+}
+
+long gf_dict_whole(const gf_dict *d, const char *key, double def, double lo, double hi)
+{
+    const double v = gf_dict_number(d, key, def, lo, hi);
+    if (v != floor(v)) {
+        char full[256];
+        gf_dict_key_path(d, key, full, sizeof full);
+        gf_dict_refuse(d->path, gf_dict_find(d, key), full, "%g is not a whole number in [%g, %g]", v, lo, hi);
+    }
+    return (long)v;
+}
+
+const char *gf_dict_word(const gf_dict *d, const char *key, const char *def, size_t maxlen)
+{
+    char full[256];
+    gf_dict_key_path(d, key, full, sizeof full);
+    const gf_dict_entry *e = gf_dict_find(d, key);
+    if (!e) return def;
+    if (e->sub || e->ntok != 1 || !*e->tok[0]) gf_dict_refuse(d->path, e, full, "expected one word or \"file name\"");
+    if (maxlen && strlen(e->tok[0]) > maxlen) gf_dict_refuse(d->path, e, full, "longer than %zu characters", maxlen);
+    return e->tok[0];
+}
+
+int gf_dict_bool(const gf_dict *d, const char *key, int def)
+{
+    char full[256];
+    gf_dict_key_path(d, key, full, sizeof full);
+    const gf_dict_entry *e = gf_dict_find(d, key);
+    if (!e) return def;
+    static const char *yes[] = {"yes", "true", "on", "1"}, *no[] = {"no", "false", "off", "0"};
+    if (!e->sub && e->ntok == 1)
+        for (size_t k = 0; k < 4; ++k) {
+            if (strcmp(e->tok[0], yes[k]) == 0) return 1;
+            if (strcmp(e->tok[0], no[k]) == 0) return 0;
+        }
+    gf_dict_refuse(d->path, e, full, "expected yes or no");
+}
+
+size_t gf_dict_numbers(const gf_dict_entry *e, const char *path, const char *key, double *v, size_t max, double lo,
+                       double hi)
+{
+    if (e->sub || e->ntok < 3 || strcmp(e->tok[0], "(") || strcmp(e->tok[e->ntok - 1], ")"))
+        gf_dict_refuse(path, e, key, "expected a list ( n1 n2 ... ) of numbers in [%g, %g]", lo, hi);
+    const size_t n = e->ntok - 2;
+    if (n > max) gf_dict_refuse(path, e, key, "%zu values: at most %zu allowed", n, max);
+    for (size_t k = 0; k < n; ++k) {
+        if (!gf_parse_number(e->tok[k + 1], &v[k])) gf_dict_refuse(path, e, key, "'%s' is not a number", e->tok[k + 1]);
+        if (!(v[k] >= lo && v[k] <= hi))
+            gf_dict_refuse(path, e, key, "%g is outside the allowed range [%g, %g]", v[k], lo, hi);
+    }
+    return n;
+}
+
+const gf_dict *gf_dict_sub(const gf_dict *d, const char *key, int required)
+{
+    char full[256];
+    gf_dict_key_path(d, key, full, sizeof full);
+    const gf_dict_entry *e = gf_dict_find(d, key);
+    if (!e) {
+        if (required) gf_dict_refuse(d->path, NULL, full, "required: a dictionary { ... }");
+        return NULL;
+    }
+    if (!e->sub) gf_dict_refuse(d->path, e, full, "expected a dictionary { ... }");
+    return e->sub;
 }

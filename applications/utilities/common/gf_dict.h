@@ -47,4 +47,37 @@ gf_dict_entry *gf_dict_find(const gf_dict *d, const char *key);
  * NULL when every one was. */
 const gf_dict_entry *gf_dict_unused(const gf_dict *d, const gf_dict **in);
 
+/* ---- typed readers that refuse a bad value and end the program ----------
+ * A refusal prints "PROG: FILE:LINE: KEY: what is wrong (the allowed range)"
+ * on stderr, KEY the full key path (scenarios/a/d0Star), and exits with
+ * status 1; PROG is the program's name (program_invocation_short_name). */
+
+/* Refuse entry e (NULL: a missing key, no line) of the dictionary file path. */
+void gf_dict_refuse(const char *path, const gf_dict_entry *e, const char *key, const char *fmt, ...)
+    __attribute__((noreturn, format(printf, 4, 5)));
+
+/* The full key path of key in d ("" at the top: key; else name/key). */
+void gf_dict_key_path(const gf_dict *d, const char *key, char *out, size_t size);
+
+/* A number key of d in [lo, hi]; def when absent (def NAN: required). */
+double gf_dict_number(const gf_dict *d, const char *key, double def, double lo, double hi);
+
+/* A whole number key of d in [lo, hi]; def when absent (def NAN: required). */
+long gf_dict_whole(const gf_dict *d, const char *key, double def, double lo, double hi);
+
+/* A one-word (or "quoted") key of d; def when absent (may be NULL).  maxlen
+ * > 0: refused when longer. */
+const char *gf_dict_word(const gf_dict *d, const char *key, const char *def, size_t maxlen);
+
+/* A yes/no key of d (yes true on 1, no false off 0); def when absent. */
+int gf_dict_bool(const gf_dict *d, const char *key, int def);
+
+/* A list ( n1 n2 ... ) of at most max numbers in [lo, hi] of entry e (key
+ * its full path, for the messages) into v; their count. */
+size_t gf_dict_numbers(const gf_dict_entry *e, const char *path, const char *key, double *v, size_t max, double lo,
+                       double hi);
+
+/* A sub-dictionary key of d; NULL when absent and not required. */
+const gf_dict *gf_dict_sub(const gf_dict *d, const char *key, int required);
+
 #endif

@@ -145,66 +145,8 @@ typedef struct config {
     size_t ns;
 } config;
 
-static void bad(const config *c, const gf_dict_entry *e, const char *key, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    fprintf(stderr, "%s: %s", prog, c->path);
-    if (e) fprintf(stderr, ":%d", e->line);
-    fprintf(stderr, ": %s: ", key);
-    vfprintf(stderr, fmt, ap);
-    fprintf(stderr, "\n");
-    va_end(ap);
-    exit(1);
-}
-
-static void full_key(const gf_dict *d, const char *key, char *out, size_t size)
-{
-    snprintf(out, size, "%s%s%s", d->name, *d->name ? "/" : "", key);
-}
-
-/* a number key of d (def when absent; NAN def: required) in [lo, hi] */
-static double num(const config *c, const gf_dict *d, const char *key, double def, double lo, double hi)
-{
-    char full[256];
-    full_key(d, key, full, sizeof full);
-    const gf_dict_entry *e = gf_dict_find(d, key);
-    if (!e) {
-        if (isnan(def)) bad(c, NULL, full, "required (a number in [%g, %g])", lo, hi);
-        return def;
-    }
-    double v;
-    if (e->sub || e->ntok != 1 || !gf_parse_number(e->tok[0], &v))
-        bad(c, e, full, "expected one number in [%g, %g]", lo, hi);
-    if (!(v >= lo && v <= hi)) bad(c, e, full, "%g is outside the allowed range [%g, %g]", v, lo, hi);
-    return v;
-}
-
-static const char *word(const config *c, const gf_dict *d, const char *key, const char *def)
-{
-    char full[256];
-    full_key(d, key, full, sizeof full);
-    const gf_dict_entry *e = gf_dict_find(d, key);
-    if (!e) return def;
-    if (e->sub || e->ntok != 1 || !*e->tok[0]) bad(c, e, full, "expected one word or \"file name\"");
-    if (strlen(e->tok[0]) >= 64 && strcmp(key, "releaseAreas") != 0) bad(c, e, full, "longer than 63 characters");
-    return e->tok[0];
-}
-
-/* a list ( a b c ) of numbers in [lo, hi]; its count, at most max */
-static size_t numbers(const config *c, const gf_dict_entry *e, const char *key, double *v, size_t max, double lo,
-                      double hi)
-{
-    if (e->sub || e->ntok < 3 || strcmp(e->tok[0], "(") || strcmp(e->tok[e->ntok - 1], ")"))
-        bad(c, e, key, "expected a list ( n1 n2 ... ) of numbers in [%g, %g]", lo, hi);
-    const size_t n = e->ntok - 2;
-    if (n > max) bad(c, e, key, "%zu values: at most %zu allowed", n, max);
-    for (size_t k = 0; k < n; ++k) {
-        if (!gf_parse_number(e->tok[k + 1], &v[k])) bad(c, e, key, "'%s' is not a number", e->tok[k + 1]);
-        if (!(v[k] >= lo && v[k] <= hi)) bad(c, e, key, "%g is outside the allowed range [%g, %g]", v[k], lo, hi);
-    }
-    return n;
-}
+/* the dictionary is read with the typed readers of common/gf_dict.h, which
+ * refuse a bad value naming the file, the line, the key and the range */
 
 static int plain_name(const char *s)
 {
@@ -223,85 +165,85 @@ static void read_config(const char *path, const char *casedir, config *c)
     c->path = path;
     gf_dict *D = gf_dict_read(path, err, sizeof err);
     if (!D) die("%s", err);
-    const char *areas = word(c, D, "releaseAreas", NULL);
-    if (!areas) bad(c, NULL, "releaseAreas", "required: the release polygons (\"file\", relative to the case or absolute)");
+    const char *areas = gf_dict_word(D, "releaseAreas", NULL, 0);
+    if (!areas) gf_dict_refuse(c->path, NULL, "releaseAreas", "required: the release polygons (\"file\", relative to the case or absolute)");
     if (areas[0] == '/') {
         c->areas = strdup(areas);
     } else {
         c->areas = gf_path(casedir, areas);
     }
-    if (!gf_exists(c->areas)) bad(c, gf_dict_find(D, "releaseAreas"), "releaseAreas", "%s: no such file", c->areas);
-    snprintf(c->id_attr, sizeof c->id_attr, "%s", word(c, D, "idAttribute", "id"));
-    snprintf(c->slope_attr, sizeof c->slope_attr, "%s", word(c, D, "slopeAttribute", "slope_deg"));
-    snprintf(c->alt_attr, sizeof c->alt_attr, "%s", word(c, D, "altitudeAttribute", "altitude_m"));
+    if (!gf_exists(c->areas)) gf_dict_refuse(c->path, gf_dict_find(D, "releaseAreas"), "releaseAreas", "%s: no such file", c->areas);
+    snprintf(c->id_attr, sizeof c->id_attr, "%s", gf_dict_word(D, "idAttribute", "id", 63));
+    snprintf(c->slope_attr, sizeof c->slope_attr, "%s", gf_dict_word(D, "slopeAttribute", "slope_deg", 63));
+    snprintf(c->alt_attr, sizeof c->alt_attr, "%s", gf_dict_word(D, "altitudeAttribute", "altitude_m", 63));
     const gf_dict_entry *e = gf_dict_find(D, "releases");
     if (e) {
         double v[4096];
-        c->n_only = numbers(c, e, "releases", v, 4096, 0, 2147483647.0);
+        c->n_only = gf_dict_numbers(e, c->path, "releases", v, 4096, 0, 2147483647.0);
         c->only = malloc(c->n_only * sizeof *c->only);
         for (size_t k = 0; k < c->n_only; ++k) {
-            if (v[k] != floor(v[k])) bad(c, e, "releases", "%g is not a whole number (an id)", v[k]);
+            if (v[k] != floor(v[k])) gf_dict_refuse(c->path, e, "releases", "%g is not a whole number (an id)", v[k]);
             c->only[k] = (long)v[k];
         }
     }
-    const char *m = word(c, D, "measured", "normal");
+    const char *m = gf_dict_word(D, "measured", "normal", 63);
     if (strcmp(m, "normal") && strcmp(m, "vertical"))
-        bad(c, gf_dict_find(D, "measured"), "measured", "'%s': allowed normal or vertical", m);
+        gf_dict_refuse(c->path, gf_dict_find(D, "measured"), "measured", "'%s': allowed normal or vertical", m);
     c->vertical = strcmp(m, "vertical") == 0;
-    c->threshold = num(c, D, "threshold", 1, 1e-6, 1e6);
+    c->threshold = gf_dict_number(D, "threshold", 1, 1e-6, 1e6);
     e = gf_dict_find(D, "zones");
     if (e) {
-        c->n_zones = numbers(c, e, "zones", c->zones, MAXZONES, 1e-6, 1e6);
+        c->n_zones = gf_dict_numbers(e, c->path, "zones", c->zones, MAXZONES, 1e-6, 1e6);
         for (size_t k = 1; k < c->n_zones; ++k)
             if (!(c->zones[k] > c->zones[k - 1]))
-                bad(c, e, "zones", "%g after %g: the limits must increase", c->zones[k], c->zones[k - 1]);
+                gf_dict_refuse(c->path, e, "zones", "%g after %g: the limits must increase", c->zones[k], c->zones[k - 1]);
     } else {
         c->n_zones = 3;
         c->zones[0] = 1, c->zones[1] = 10, c->zones[2] = 30;
     }
-    const double gradient = num(c, D, "gradient", 0, -1, 1);
-    const double zref = num(c, D, "zRef", 1e300, -500, 9000); /* 1e300: not given */
+    const double gradient = gf_dict_number(D, "gradient", 0, -1, 1);
+    const double zref = gf_dict_number(D, "zRef", 1e300, -500, 9000); /* 1e300: not given */
     e = gf_dict_find(D, "scenarios");
-    if (!e) bad(c, NULL, "scenarios", "required: a dictionary { NAME { d0Star D; } ... } of at least one scenario");
+    if (!e) gf_dict_refuse(c->path, NULL, "scenarios", "required: a dictionary { NAME { d0Star D; } ... } of at least one scenario");
     if (!e->sub || e->sub->n == 0)
-        bad(c, e, "scenarios", "expected a dictionary { NAME { d0Star D; } ... } of at least one scenario");
-    if (e->sub->n > MAXSCEN) bad(c, e, "scenarios", "%zu scenarios: at most %d", e->sub->n, MAXSCEN);
+        gf_dict_refuse(c->path, e, "scenarios", "expected a dictionary { NAME { d0Star D; } ... } of at least one scenario");
+    if (e->sub->n > MAXSCEN) gf_dict_refuse(c->path, e, "scenarios", "%zu scenarios: at most %d", e->sub->n, MAXSCEN);
     for (size_t k = 0; k < e->sub->n; ++k) {
         gf_dict_entry *se = &e->sub->e[k];
         se->used = 1;
         char full[256];
         snprintf(full, sizeof full, "scenarios/%s", se->key);
         if (!plain_name(se->key) || strlen(se->key) >= 48)
-            bad(c, se, full, "a scenario's name is a folder name: letters, digits, _ and -, at most 47 characters");
-        if (!se->sub) bad(c, se, full, "expected a dictionary { d0Star D; } or { thicknessAttribute NAME; }");
+            gf_dict_refuse(c->path, se, full, "a scenario's name is a folder name: letters, digits, _ and -, at most 47 characters");
+        if (!se->sub) gf_dict_refuse(c->path, se, full, "expected a dictionary { d0Star D; } or { thicknessAttribute NAME; }");
         for (size_t j = 0; j < k; ++j)
-            if (strcmp(c->s[j].name, se->key) == 0) bad(c, se, full, "a second scenario of this name");
+            if (strcmp(c->s[j].name, se->key) == 0) gf_dict_refuse(c->path, se, full, "a second scenario of this name");
         scenario *s = &c->s[c->ns++];
         snprintf(s->name, sizeof s->name, "%s", se->key);
         const gf_dict *sd = se->sub;
         const int has_d0 = gf_dict_find(sd, "d0Star") != NULL, has_attr = gf_dict_find(sd, "thicknessAttribute") != NULL;
         if (has_d0 == has_attr)
-            bad(c, se, full, "takes one of d0Star (Salm's depth [m], in [0, 20]) and thicknessAttribute (a field of the polygons)");
+            gf_dict_refuse(c->path, se, full, "takes one of d0Star (Salm's depth [m], in [0, 20]) and thicknessAttribute (a field of the polygons)");
         if (has_d0) {
             s->salm = 1;
-            s->d0star = num(c, sd, "d0Star", NAN, 0, 20);
-            s->gradient = num(c, sd, "gradient", gradient, -1, 1);
-            s->zref = num(c, sd, "zRef", zref, -500, 9000);
+            s->d0star = gf_dict_number(sd, "d0Star", NAN, 0, 20);
+            s->gradient = gf_dict_number(sd, "gradient", gradient, -1, 1);
+            s->zref = gf_dict_number(sd, "zRef", zref, -500, 9000);
             if (s->zref == 1e300) {
-                if (s->gradient != 0) bad(c, se, full, "gradient %g needs zRef (the altitude of d0Star [m], in [-500, 9000])", s->gradient);
+                if (s->gradient != 0) gf_dict_refuse(c->path, se, full, "gradient %g needs zRef (the altitude of d0Star [m], in [-500, 9000])", s->gradient);
                 s->zref = 0;
             }
         } else {
-            snprintf(s->attr, sizeof s->attr, "%s", word(c, sd, "thicknessAttribute", NULL));
-            s->factor = num(c, sd, "factor", 1, 1e-6, 100);
+            snprintf(s->attr, sizeof s->attr, "%s", gf_dict_word(sd, "thicknessAttribute", NULL, 63));
+            s->factor = gf_dict_number(sd, "factor", 1, 1e-6, 100);
         }
     }
     const gf_dict *in = NULL;
     const gf_dict_entry *u = gf_dict_unused(D, &in);
     if (u) {
         char full[256];
-        full_key(in, u->key, full, sizeof full);
-        bad(c, u, full,
+        gf_dict_key_path(in, u->key, full, sizeof full);
+        gf_dict_refuse(c->path, u, full,
             "unknown key (allowed: releaseAreas idAttribute releases slopeAttribute altitudeAttribute gradient zRef "
             "measured threshold zones scenarios; a scenario: d0Star gradient zRef, or thicknessAttribute factor)");
     }
