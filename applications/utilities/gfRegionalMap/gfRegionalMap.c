@@ -75,6 +75,7 @@
  * DIR/releases/.
  */
 #define _GNU_SOURCE
+#include <dirent.h>
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -143,6 +144,10 @@ typedef struct config {
     size_t n_zones;
     scenario s[MAXSCEN];
     size_t ns;
+    /* clip { }: each release on its own clipped sub-domain */
+    int clip;
+    double buffer, reach, climb;
+    long retries;
 } config;
 
 /* the dictionary is read with the typed readers of common/gf_dict.h, which
@@ -238,6 +243,14 @@ static void read_config(const char *path, const char *casedir, config *c)
             s->factor = gf_dict_number(sd, "factor", 1, 1e-6, 100);
         }
     }
+    const gf_dict *cl = gf_dict_sub(D, "clip", 0);
+    if (cl) {
+        c->clip = 1;
+        c->buffer = gf_dict_number(cl, "buffer", 300, 0, 100000);
+        c->reach = gf_dict_number(cl, "reach", 1000, 0, 100000);
+        c->climb = gf_dict_number(cl, "climb", 5, 0, 100);
+        c->retries = gf_dict_whole(cl, "retries", 2, 0, 6);
+    }
     const gf_dict *in = NULL;
     const gf_dict_entry *u = gf_dict_unused(D, &in);
     if (u) {
@@ -245,7 +258,8 @@ static void read_config(const char *path, const char *casedir, config *c)
         gf_dict_key_path(in, u->key, full, sizeof full);
         gf_dict_refuse(c->path, u, full,
             "unknown key (allowed: releaseAreas idAttribute releases slopeAttribute altitudeAttribute gradient zRef "
-            "measured threshold zones scenarios; a scenario: d0Star gradient zRef, or thicknessAttribute factor)");
+            "measured threshold zones scenarios clip; a scenario: d0Star gradient zRef, or thicknessAttribute factor; "
+            "clip: buffer reach climb retries)");
     }
     gf_dict_free(D);
 }
@@ -393,6 +407,10 @@ typedef struct member {
     /* the result */
     int done, ok, resumed;
     double seconds, affected, maxppr;
+    /* clipped: the outflow through the mesh's boundary [m3], the release
+     * volume [m3], the clip's buffer [m] and whether the clip is the whole DEM */
+    double outflow, volume, buffer;
+    int whole, edge;   /* edge: reached a clip side where the region goes on */
 } member;
 
 typedef struct job {
@@ -405,6 +423,12 @@ typedef struct job {
     pthread_mutex_t lock;
     size_t next, finished, total;
     double t0;
+    /* clipped runs */
+    gf_raster dem;           /* the case's DEM: the region's grid */
+    int coarsen;
+    double depth_slab;
+    char *casedir, *clips;
+    size_t next_rel;
 } job;
 
 static void member_dir(const job *j, const member *m, char *buf, size_t size)
@@ -421,10 +445,14 @@ static int read_result(const char *md, member *m)
     free(f);
     if (!in) return 0;
     char st[16] = "";
-    double d, sec, a = NAN, p = NAN;
-    const int n = fscanf(in, "%15s %lf %lf %lf %lf", st, &d, &sec, &a, &p);
+    double d, sec, a = NAN, p = NAN, of = NAN, vol = NAN, buf = NAN;
+    int whole = 0, edge = 0;
+    const int n =
+        fscanf(in, "%15s %lf %lf %lf %lf %lf %lf %lf %d %d", st, &d, &sec, &a, &p, &of, &vol, &buf, &whole, &edge);
+    m->outflow = NAN, m->volume = NAN, m->buffer = NAN, m->whole = 0, m->edge = 0;
+    if (n == 10) m->outflow = of, m->volume = vol, m->buffer = buf, m->whole = whole, m->edge = edge;
     int okr = 0;
-    if (n == 5 && strcmp(st, "ok") == 0) {
+    if ((n == 5 || n == 10) && strcmp(st, "ok") == 0) {
         m->ok = 1, okr = 1;
     } else if (n >= 3 && strcmp(st, "failed") == 0) {
         m->ok = 0, okr = 1;
@@ -447,7 +475,8 @@ static void write_result(const char *md, const member *m)
     FILE *out = fopen(tmp, "w");
     if (!out) die("cannot write %s", tmp);
     if (m->ok)
-        fprintf(out, "ok %.17g %.3f %.17g %.17g\n", m->depth, m->seconds, m->affected, m->maxppr);
+        fprintf(out, "ok %.17g %.3f %.17g %.17g %.17g %.17g %.17g %d %d\n", m->depth, m->seconds, m->affected,
+                m->maxppr, m->outflow, m->volume, m->buffer, m->whole, m->edge);
     else
         fprintf(out, "failed %.17g %.3f\n%s\n", m->depth, m->seconds, m->why);
     if (fclose(out) || rename(tmp, f)) die("cannot write %s", f);
@@ -480,9 +509,9 @@ static int write_release_shp(const areas *A, const release *r, const char *path,
     return st ? -1 : 0;
 }
 
-static int make_member(const job *j, const member *m, const char *md, char *why, size_t wsize)
+static int make_member(const job *j, const char *templ, const member *m, const char *md, char *why, size_t wsize)
 {
-    if (gf_member_copy(j->templ, md, why, wsize)) return -1;
+    if (gf_member_copy(templ, md, why, wsize)) return -1;
     char *shp = gf_path(md, "release.shp");
     const int st = write_release_shp(j->A, &j->A->r[m->rel], shp, why, wsize);
     if (st) {
@@ -560,7 +589,7 @@ static void *runner(void *arg)
         member_dir(j, m, md, sizeof md);
         const double t = now();
         int ok = 0;
-        if (make_member(j, m, md, why, sizeof why) == 0) {
+        if (make_member(j, j->templ, m, md, why, sizeof why) == 0) {
             if (gf_workers_run(j->pool, md, &ok, why, sizeof why)) die("%s", gf_error_detail());
             if (ok && score(j, md, m, why, sizeof why)) ok = 0;
             gf_remove_times(md);
@@ -794,6 +823,559 @@ static void alpha_beta(const job *j, const char *casedir)
     gf_raster_free(&dem);
 }
 
+
+/*---------------------------------------------------------------- clipped sub-domains --*/
+
+static void make_template(const char *casedir, const char *templ);
+
+/* the case's terrainDict: its coarsening and slab depth (a clip is meshed
+ * with them); a crop or a dam is refused, since a clip's DEM is cut from the
+ * case's DEM as it is */
+static void clip_settings(job *j)
+{
+    char *td = gf_path(j->casedir, "system/terrainDict");
+    char err[2048];
+    gf_dict *D = gf_dict_read(td, err, sizeof err);
+    if (!D) die("clip (%s): %s", j->c->path, err);
+    j->coarsen = (int)gf_dict_whole(D, "coarsen", 1, 1, 1000);
+    j->depth_slab = gf_dict_number(D, "depth", 10, 1e-6, 1e6);
+    gf_dict_find(D, "dem");
+    const gf_dict *in = NULL;
+    const gf_dict_entry *u = gf_dict_unused(D, &in);
+    if (u)
+        die("%s:%d: %s: a clipped batch (clip in %s) meshes each release's part of the case's DEM with its dem, "
+            "coarsen and depth only: remove clip from %s or %s from the case",
+            td, u->line, u->key, j->c->path, j->c->path, u->key);
+    gf_dict_free(D);
+    free(td);
+}
+
+/* the clip box of release r with a buffer [m] on the region's DEM (pixels,
+ * inclusive, its corner nodes on the case's coarsened node grid); 0, or -1
+ * with the reason */
+static int release_box(const job *j, size_t r, double buffer, int box[4], int *whole, char *why, size_t wsize)
+{
+    const gf_raster *dem = &j->dem;
+    const release *R = &j->A->r[r];
+    char name[64];
+    snprintf(name, sizeof name, "r%ld.shp", R->id);
+    char *rd = gf_path(j->clips, "releases");
+    mkdir(rd, 0755);
+    char *shp = gf_path(rd, name);
+    free(rd);
+    if (!gf_exists(shp) && write_release_shp(j->A, R, shp, why, wsize)) {
+        free(shp);
+        return -1;
+    }
+    gf_polygons P;
+    if (gf_polygons_read(shp, NULL, 1, &P)) {
+        snprintf(why, wsize, "%s: %s", shp, gf_error_detail());
+        free(shp);
+        return -1;
+    }
+    free(shp);
+    OGREnvelope env;
+    OGR_G_GetEnvelope(R->geom, &env);
+    const double px = dem->gt[1], py = dem->gt[5];
+    int c0 = (int)floor((env.MinX - dem->gt[0]) / px), c1 = (int)floor((env.MaxX - dem->gt[0]) / px);
+    int r0 = (int)floor((env.MaxY - dem->gt[3]) / py), r1 = (int)floor((env.MinY - dem->gt[3]) / py);
+    if (c0 < 0) c0 = 0;
+    if (r0 < 0) r0 = 0;
+    if (c1 > dem->nx - 1) c1 = dem->nx - 1;
+    if (r1 > dem->ny - 1) r1 = dem->ny - 1;
+    size_t n = 0;
+    size_t *cells = NULL;
+    if (c0 <= c1 && r0 <= r1) {
+        gf_raster w = *dem;
+        w.nx = c1 - c0 + 1, w.ny = r1 - r0 + 1;
+        w.gt[0] = dem->gt[0] + c0 * px, w.gt[3] = dem->gt[3] + r0 * py;
+        unsigned char *mask = malloc((size_t)w.nx * (size_t)w.ny);
+        cells = malloc((size_t)w.nx * (size_t)w.ny * sizeof *cells);
+        if (!mask || !cells) die("out of memory");
+        gf_polygons_mask(&P, &w, mask);
+        for (int jj = 0; jj < w.ny; ++jj)
+            for (int ii = 0; ii < w.nx; ++ii) {
+                const size_t c = (size_t)(r0 + jj) * (size_t)dem->nx + (size_t)(c0 + ii);
+                if (mask[(size_t)jj * (size_t)w.nx + (size_t)ii] && isfinite(dem->z[c])) cells[n++] = c;
+            }
+        free(mask);
+    }
+    gf_polygons_free(&P);
+    if (n == 0) {
+        free(cells);
+        snprintf(why, wsize, "no DEM cell in the polygon (clip)");
+        return -1;
+    }
+    if (gf_downslope_box(dem, n, cells, j->c->climb, j->c->reach, box, NULL)) {
+        snprintf(why, wsize, "clip: %s", gf_error_detail());
+        free(cells);
+        return -1;
+    }
+    free(cells);
+    const int b = (int)ceil(buffer / px), k = j->coarsen;
+    box[0] -= b, box[1] -= b, box[2] += b, box[3] += b;
+    if (box[0] < 0) box[0] = 0;
+    if (box[1] < 0) box[1] = 0;
+    box[0] -= box[0] % k, box[1] -= box[1] % k;
+    box[2] = box[0] + ((box[2] - box[0] + k - 1) / k) * k;
+    box[3] = box[1] + ((box[3] - box[1] + k - 1) / k) * k;
+    if (box[2] > dem->nx - 1) box[2] = dem->nx - 1;
+    if (box[3] > dem->ny - 1) box[3] = dem->ny - 1;
+    *whole = box[0] == 0 && box[1] == 0 && box[2] == dem->nx - 1 && box[3] == dem->ny - 1;
+    return 0;
+}
+
+/* a field file of the case with its internalField uniform 0 of its class
+ * (the release is set at the start; the list of the case's mesh would not
+ * fit the clip's) and written in ascii: the header up to internalField and
+ * the boundaryField after it kept */
+static int uniform_field(const char *f)
+{
+    FILE *in = fopen(f, "rb");
+    if (!in) return -1;
+    fseek(in, 0, SEEK_END);
+    const long size = ftell(in);
+    fseek(in, 0, SEEK_SET);
+    char *t = malloc((size_t)size + 1);
+    if (!t || fread(t, 1, (size_t)size, in) != (size_t)size) {
+        fclose(in), free(t);
+        return -1;
+    }
+    fclose(in);
+    t[size] = 0;
+    char *fi = strstr(t, "internalField");
+    /* the last boundaryField (a binary list may hold any bytes before it) */
+    char *bf = NULL;
+    for (long k = size - 13; k >= 0 && !bf; --k)
+        if (memcmp(t + k, "boundaryField", 13) == 0) bf = t + k;
+    if (!fi || !bf || bf < fi) {
+        free(t);
+        return -1;
+    }
+    *fi = 0;
+    char *cl = strstr(t, "class");
+    char cls[64] = "";
+    if (cl) sscanf(cl + 5, " %63[A-Za-z]", cls);
+    const char *v = strstr(cls, "Vector")   ? "uniform (0 0 0)"
+                    : strstr(cls, "Tensor") ? "uniform (0 0 0 0 0 0 0 0 0)"
+                                            : "uniform 0";
+    char *bin = strstr(t, "binary");
+    FILE *o = fopen(f, "wb");
+    if (!o) {
+        free(t);
+        return -1;
+    }
+    if (bin) {
+        fwrite(t, 1, (size_t)(bin - t), o);
+        fprintf(o, "ascii; ");
+        fputs(bin + 7, o);
+    } else {
+        fputs(t, o);
+    }
+    fprintf(o, "internalField   %s;\n\n", v);
+    fputs(bf, o);
+    const int st = fclose(o);
+    free(t);
+    return st ? -1 : 0;
+}
+
+/* the clip case cd of the region's DEM pixels box: its DEM cut (Inputs/clipDEM.tif, the
+ * region's values and pixel grid), the case's system/, constant/ and 0/
+ * (internal fields uniform), meshed by gfTerrainMesh; 0, or -1 with the reason */
+static int make_clip(const job *j, const int box[4], const char *cd, char *why, size_t wsize)
+{
+    if (gf_exists(cd)) return 0;
+    char *tmp = NULL, *log = NULL;
+    if (asprintf(&tmp, "%s.tmp", cd) < 0 || asprintf(&log, "%s.log", cd) < 0) die("out of memory");
+    char *rm[] = {"rm", "-rf", tmp, NULL};
+    gf_run(rm, NULL);
+    unlink(log);
+    int st = -1;
+    char *sys = gf_path(j->casedir, "system"), *zero = gf_path(j->casedir, "0"), *cons = gf_path(j->casedir, "constant");
+    char *tcons = gf_path(tmp, "constant"), *demf = gf_path(tmp, "Inputs/clipDEM.tif"), *td = gf_path(tmp, "system/terrainDict");
+    char *tzero = gf_path(tmp, "0"), *inp = gf_path(j->casedir, "Inputs"), *tinp = gf_path(tmp, "Inputs");
+    if (mkdir(tmp, 0755) || mkdir(tcons, 0755)) {
+        snprintf(why, wsize, "cannot make %s", tmp);
+        goto out;
+    }
+    char *cp[] = {"cp", "-r", sys, zero, tmp, NULL};
+    if (gf_run(cp, log)) {
+        snprintf(why, wsize, "cannot copy the case's system/ and 0/ to %s (%s)", tmp, log);
+        goto out;
+    }
+    /* Inputs/: the clip's DEM and links to the case's inputs (members link it) */
+    if (mkdir(tinp, 0755)) {
+        snprintf(why, wsize, "cannot make %s", tinp);
+        goto out;
+    }
+    DIR *d = opendir(inp);
+    struct dirent *de;
+    while (d && (de = readdir(d))) {
+        if (de->d_name[0] == '.' || !strcmp(de->d_name, "clipDEM.tif")) continue;
+        char *f = gf_path(inp, de->d_name), *l = gf_path(tinp, de->d_name);
+        const int e = symlink(f, l);
+        free(f), free(l);
+        if (e) {
+            closedir(d);
+            snprintf(why, wsize, "cannot link the case's Inputs/%s", de->d_name);
+            goto out;
+        }
+    }
+    if (d) closedir(d);
+    d = opendir(cons);
+    if (!d) {
+        snprintf(why, wsize, "cannot read %s", cons);
+        goto out;
+    }
+    int bad = 0;
+    while (!bad && (de = readdir(d))) {
+        if (de->d_name[0] == '.' || !strcmp(de->d_name, "polyMesh") || !strcmp(de->d_name, "faMesh") ||
+            !strcmp(de->d_name, "terrainProperties") || !strcmp(de->d_name, "demWithDam.tif"))
+            continue;
+        char *f = gf_path(cons, de->d_name);
+        char *c2[] = {"cp", "-r", f, tcons, NULL};
+        bad = gf_run(c2, log);
+        free(f);
+    }
+    closedir(d);
+    if (bad) {
+        snprintf(why, wsize, "cannot copy the case's constant/ (%s)", log);
+        goto out;
+    }
+    {
+        /* the area mesh's definition (gfTerrainMesh writes the area mesh from it) */
+        char *fm = gf_path(cons, "faMesh/faMeshDefinition"), *tfm = gf_path(tcons, "faMesh");
+        if (gf_exists(fm)) {
+            mkdir(tfm, 0755);
+            char *c3[] = {"cp", fm, tfm, NULL};
+            bad = gf_run(c3, log);
+        }
+        free(fm), free(tfm);
+        if (bad) {
+            snprintf(why, wsize, "cannot copy the case's constant/faMesh/faMeshDefinition (%s)", log);
+            goto out;
+        }
+    }
+    /* the DEM cut: the same values, the pixel grid shifted by whole pixels */
+    const gf_raster *R = &j->dem;
+    gf_raster w = *R;
+    w.nx = box[2] - box[0] + 1, w.ny = box[3] - box[1] + 1;
+    w.gt[0] = R->gt[0] + box[0] * R->gt[1], w.gt[3] = R->gt[3] + box[1] * R->gt[5];
+    double *z = malloc((size_t)w.nx * (size_t)w.ny * sizeof *z);
+    if (!z) die("out of memory");
+    for (int jj = 0; jj < w.ny; ++jj)
+        memcpy(z + (size_t)jj * (size_t)w.nx, R->z + (size_t)(box[1] + jj) * (size_t)R->nx + (size_t)box[0],
+               (size_t)w.nx * sizeof *z);
+    w.z = z;
+    const gf_status ws = gf_raster_write(demf, "GTiff", &w, z);
+    free(z);
+    if (ws) {
+        snprintf(why, wsize, "%s: %s", demf, gf_error_detail());
+        goto out;
+    }
+    FILE *o = fopen(td, "w");
+    if (!o) {
+        snprintf(why, wsize, "cannot write %s", td);
+        goto out;
+    }
+    fprintf(o,
+            "FoamFile { version 2.0; format ascii; class dictionary; location \"system\"; object terrainDict; }\n"
+            "// gfRegionalMap clip: pixels %d..%d x %d..%d of the case's DEM\n"
+            "dem      \"Inputs/clipDEM.tif\";\ncoarsen  %d;\ndepth    %.17g;\n",
+            box[0], box[2], box[1], box[3], j->coarsen, j->depth_slab);
+    if (fclose(o)) {
+        snprintf(why, wsize, "cannot write %s", td);
+        goto out;
+    }
+    if ((d = opendir(tzero))) {
+        while (!bad && (de = readdir(d))) {
+            if (de->d_name[0] == '.') continue;
+            char *f = gf_path(tzero, de->d_name);
+            bad = uniform_field(f);
+            free(f);
+        }
+        closedir(d);
+    }
+    if (bad) {
+        snprintf(why, wsize, "cannot make the clip's 0/ fields uniform (%s)", tzero);
+        goto out;
+    }
+    char *tm[] = {"gfTerrainMesh", "-case", tmp, NULL};
+    if (gf_run(tm, log)) {
+        snprintf(why, wsize, "gfTerrainMesh failed on the clip (%s)", log);
+        goto out;
+    }
+    char *fl = gf_path(tmp, "constant/faMesh/faceLabels");
+    const int has = gf_exists(fl);
+    free(fl);
+    if (!has) {
+        char *mf[] = {"makeFaMesh", "-case", tmp, NULL};
+        if (gf_run(mf, log)) {
+            snprintf(why, wsize, "makeFaMesh failed on the clip (%s)", log);
+            goto out;
+        }
+    }
+    if (rename(tmp, cd)) {
+        snprintf(why, wsize, "cannot rename %s", tmp);
+        goto out;
+    }
+    st = 0;
+out:
+    free(tmp), free(log), free(sys), free(zero), free(cons), free(tcons), free(demf), free(td), free(tzero);
+    free(inp), free(tinp);
+    return st;
+}
+
+/* the outflow through the mesh's boundary and the release volume [m3] of a
+ * member that ran (its postProcessing/hazardMaps/mass.csv) */
+static int member_outflow(const char *md, double *outflow, double *volume)
+{
+    char *f = gf_path(md, "postProcessing/hazardMaps/mass.csv");
+    FILE *in = fopen(f, "r");
+    free(f);
+    if (!in) return -1;
+    char line[1024];
+    int iv = -1, io = -1, rows = 0;
+    *outflow = NAN, *volume = NAN;
+    while (fgets(line, sizeof line, in)) {
+        char *save = NULL;
+        int col = 0;
+        for (char *t = strtok_r(line, ",\r\n", &save); t; t = strtok_r(NULL, ",\r\n", &save), ++col) {
+            if (rows == 0) {
+                if (!strcmp(t, "volume")) iv = col;
+                if (!strcmp(t, "netOutflow")) io = col;
+            } else {
+                if (col == iv && rows == 1) *volume = atof(t);
+                if (col == io) *outflow = atof(t);
+            }
+        }
+        ++rows;
+    }
+    fclose(in);
+    return iv < 0 || io < 0 || rows < 2 ? -1 : 0;
+}
+
+/* flow left through the clip's boundary: more than 1e-6 of the release left
+ * the mesh and the flow reached a side of the clip where the region goes on
+ * (flow leaving through the region's own border leaves the whole DEM's mesh
+ * too) */
+static int leaked(const member *m)
+{
+    return m->ok && !m->whole && m->edge && isfinite(m->outflow) && m->outflow > 1e-6 * m->volume;
+}
+
+/* did the member's flow (hPeak > 0) reach the clip's outer faces (k pixels
+ * of its sides) on a side where the region's DEM goes on? */
+static int reaches_clip_edge(const job *j, const char *md, const int box[4])
+{
+    char *f = gf_path(md, "postProcessing/hazardMaps/hPeak.tif");
+    gf_raster r;
+    const int bad = gf_raster_read(f, &r) != GF_SUCCESS;
+    free(f);
+    if (bad) return 1;
+    const gf_raster *R = &j->dem;
+    const int k = j->coarsen;
+#define RVALID(cc, rr) ((cc) >= 0 && (rr) >= 0 && (cc) < R->nx && (rr) < R->ny && !isnan(R->z[(size_t)(rr) * (size_t)R->nx + (size_t)(cc)]))
+    int hit = 0;
+    for (int jj = 0; jj < r.ny && !hit; ++jj)
+        for (int ii = 0; ii < r.nx && !hit; ++ii) {
+            const double v = r.z[(size_t)jj * (size_t)r.nx + (size_t)ii];
+            if (!(v > 0)) continue;
+            const int gc = box[0] + ii, gr = box[1] + jj;
+            if (ii <= k && RVALID(box[0] - 1, gr)) hit = 1;
+            if (ii >= r.nx - 1 - k && RVALID(box[2] + 1, gr)) hit = 1;
+            if (jj <= k && RVALID(gc, box[1] - 1)) hit = 1;
+            if (jj >= r.ny - 1 - k && RVALID(gc, box[3] + 1)) hit = 1;
+        }
+#undef RVALID
+    gf_raster_free(&r);
+    return hit;
+}
+
+/* the buffer of a release's attempt a (0, 1, ... retries): doubled each time
+ * (from 100 m when the first is 0) */
+static double attempt_buffer(const config *c, long a)
+{
+    double b = c->buffer;
+    for (long k = 0; k < a; ++k) b = b > 0 ? 2 * b : 100;
+    return b;
+}
+
+/* every scenario of release r, on clips growing by doubling the buffer while
+ * flow leaves through a clip's boundary (clip retries) */
+static void run_release(job *j, size_t r)
+{
+    const config *c = j->c;
+    const size_t nr = j->A->n;
+    const long id = j->A->r[r].id;
+    for (long attempt = 0; attempt <= c->retries; ++attempt) {
+        const double buffer = attempt_buffer(c, attempt);
+        size_t pending = 0;
+        for (size_t s = 0; s < c->ns; ++s) {
+            const member *m = &j->m[s * nr + r];
+            if (m->pre_failed || (m->done && (!m->ok || !leaked(m)))) continue;
+            if (m->done && m->buffer >= buffer) continue; /* ran on this clip (or a larger one) already */
+            ++pending;
+        }
+        if (!pending) continue;
+        char why[2048] = "", cd[4096];
+        int box[4], whole = 0;
+        int okc = release_box(j, r, buffer, box, &whole, why, sizeof why) == 0;
+        snprintf(cd, sizeof cd, "%s/r%ld_b%g", j->clips, id, buffer);
+        if (okc && make_clip(j, box, cd, why, sizeof why)) okc = 0;
+        char *templ = gf_path(cd, "template");
+        if (okc) make_template(cd, templ);
+        gf_workers *pool = NULL;
+        if (okc) {
+            char *logfmt = gf_path(cd, "log.worker_%u");
+            char *argvw[] = {"faGranularFlowFoam", "-case", cd, "-members", "-", NULL};
+            if (gf_workers_start(1, argvw, logfmt, &pool)) die("workers: %s", gf_error_detail());
+            free(logfmt);
+        }
+        for (size_t s = 0; s < c->ns; ++s) {
+            member *m = &j->m[s * nr + r];
+            if (m->pre_failed || (m->done && (!m->ok || !leaked(m)))) continue;
+            if (m->done && m->buffer >= buffer) continue;
+            const int rerun = m->done;
+            char md[4096], mwhy[2048] = "";
+            member_dir(j, m, md, sizeof md);
+            const double t = now();
+            int ok = 0;
+            m->buffer = buffer, m->whole = whole, m->outflow = NAN, m->volume = NAN, m->edge = 0;
+            if (!okc) {
+                mkdir(md, 0755);
+                snprintf(mwhy, sizeof mwhy, "%s", why);
+            } else if (make_member(j, templ, m, md, mwhy, sizeof mwhy) == 0) {
+                if (gf_workers_run(pool, md, &ok, mwhy, sizeof mwhy)) die("%s", gf_error_detail());
+                if (ok && score(j, md, m, mwhy, sizeof mwhy)) ok = 0;
+                if (ok && member_outflow(md, &m->outflow, &m->volume)) {
+                    snprintf(mwhy, sizeof mwhy, "no mass balance (postProcessing/hazardMaps/mass.csv)");
+                    ok = 0;
+                }
+                if (ok) m->edge = reaches_clip_edge(j, md, box);
+                gf_remove_times(md);
+            }
+            m->ok = ok;
+            m->seconds = now() - t;
+            m->why[0] = 0;
+            if (!ok) snprintf(m->why, sizeof m->why, "%s", mwhy);
+            for (char *p = m->why; *p; ++p)
+                if (*p == '\n' || *p == '\r') *p = ' ';
+            write_result(md, m);
+            pthread_mutex_lock(&j->lock);
+            m->done = 1;
+            if (!rerun) ++j->finished;
+            if (ok)
+                printf("member %-20s %3zu/%zu: depth %.3f m, %.1f s, affected %.0f m2, max %.1f kPa; clip %dx%d "
+                       "pixels (buffer %g m)%s\n",
+                       strrchr(md, '/') + 1, j->finished, j->total, m->depth, m->seconds, m->affected, m->maxppr,
+                       box[2] - box[0] + 1, box[3] - box[1] + 1, buffer,
+                       leaked(m) ? ": flow left through the clip's boundary" : "");
+            else
+                printf("member %-20s %3zu/%zu: FAILED (%s)\n", strrchr(md, '/') + 1, j->finished, j->total, m->why);
+            fflush(stdout);
+            pthread_mutex_unlock(&j->lock);
+        }
+        if (pool && gf_workers_stop(pool)) fprintf(stderr, "%s: %s\n", prog, gf_error_detail());
+        free(templ);
+        if (!okc || whole) break;
+    }
+}
+
+static void *clip_runner(void *arg)
+{
+    job *j = arg;
+    for (;;) {
+        pthread_mutex_lock(&j->lock);
+        const size_t r = j->next_rel++;
+        pthread_mutex_unlock(&j->lock);
+        if (r >= j->A->n) return NULL;
+        run_release(j, r);
+    }
+}
+
+/* the scenario's merged maps on the region's grid: each member's rasters (on
+ * its clip's grid: the region's pixel size, its origin whole pixels away,
+ * checked) folded in; cells of the region's DEM that no member's clip holds
+ * are 0 (not reached); the members merged */
+static size_t merge_clipped(const job *j, size_t s, char *outdir)
+{
+    const config *c = j->c;
+    const gf_raster *R = &j->dem;
+    size_t n = 0;
+    for (size_t k = 0; k < j->nm; ++k) n += j->m[k].scen == s && j->m[k].ok;
+    if (n == 0) return 0;
+    mkdir(outdir, 0755);
+    static const char *field[] = {"pressurePeak", "hPeak", "speedPeak"};
+    const size_t nc = (size_t)R->nx * (size_t)R->ny;
+    gf_raster grid = *R;
+    for (size_t fi = 0; fi < 3; ++fi) {
+        double *mx = malloc(nc * sizeof *mx);
+        unsigned *count = calloc(nc, sizeof *count);
+        long *who = malloc(nc * sizeof *who);
+        if (!mx || !count || !who) die("out of memory");
+        for (size_t q = 0; q < nc; ++q) mx[q] = NAN, who[q] = -1;
+        for (size_t k = 0; k < j->nm; ++k) {
+            const member *m = &j->m[k];
+            if (m->scen != s || !m->ok) continue;
+            char md[4096], rel[256];
+            member_dir(j, m, md, sizeof md);
+            snprintf(rel, sizeof rel, "postProcessing/hazardMaps/%s.tif", field[fi]);
+            char *f = gf_path(md, rel);
+            gf_raster r;
+            if (gf_raster_read(f, &r)) die("%s: %s", f, gf_error_detail());
+            if (fabs(r.gt[1] - R->gt[1]) > 1e-9 * fabs(R->gt[1]) || fabs(r.gt[5] - R->gt[5]) > 1e-9 * fabs(R->gt[5]))
+                die("%s: pixel %g x %g m, the region's DEM's %g x %g m: not the region's grid", f, r.gt[1], r.gt[5],
+                    R->gt[1], R->gt[5]);
+            const double fc = (r.gt[0] - R->gt[0]) / R->gt[1], fr = (r.gt[3] - R->gt[3]) / R->gt[5];
+            const long oc = lround(fc), orow = lround(fr);
+            if (fabs(fc - (double)oc) > 1e-6 || fabs(fr - (double)orow) > 1e-6 || oc < 0 || orow < 0 ||
+                oc + r.nx > R->nx || orow + r.ny > R->ny)
+                die("%s: its origin is %.9g, %.9g pixels from the region's DEM's (%d x %d pixels there): not a "
+                    "whole-pixel window of the region's grid",
+                    f, fc, fr, r.nx, r.ny);
+            grid.nodata = r.nodata;
+            const long id = j->A->r[m->rel].id;
+            for (int jj = 0; jj < r.ny; ++jj)
+                for (int ii = 0; ii < r.nx; ++ii) {
+                    const double v = r.z[(size_t)jj * (size_t)r.nx + (size_t)ii];
+                    if (isnan(v)) continue;
+                    const size_t q = (size_t)(orow + jj) * (size_t)R->nx + (size_t)(oc + ii);
+                    if (isnan(mx[q]) || v > mx[q]) mx[q] = v, who[q] = id;
+                    if (v > c->threshold) ++count[q];
+                }
+            gf_raster_free(&r);
+            free(f);
+        }
+        for (size_t q = 0; q < nc; ++q)
+            if (isnan(mx[q]) && !isnan(R->z[q])) mx[q] = 0;
+        char name[64];
+        snprintf(name, sizeof name, "%sMax.tif", field[fi]);
+        write_tif(outdir, name, &grid, mx);
+        if (fi == 0) {
+            double *a = malloc(nc * sizeof *a);
+            if (!a) die("out of memory");
+            for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) ? NAN : (double)count[q];
+            write_tif(outdir, "count.tif", &grid, a);
+            for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) || !(mx[q] > 0) ? NAN : (double)who[q];
+            write_tif(outdir, "releaseId.tif", &grid, a);
+            for (size_t q = 0; q < nc; ++q) {
+                if (isnan(mx[q])) {
+                    a[q] = NAN;
+                    continue;
+                }
+                size_t z = 0;
+                while (z < c->n_zones && mx[q] > c->zones[z]) ++z;
+                a[q] = (double)z;
+            }
+            write_tif(outdir, "zones.tif", &grid, a);
+            free(a);
+        }
+        free(mx), free(count), free(who);
+    }
+    return n;
+}
+
 /*---------------------------------------------------------------- main --*/
 
 static void check_path(const char *what, const char *path)
@@ -803,11 +1385,11 @@ static void check_path(const char *what, const char *path)
             what, path);
 }
 
-static void make_template(const job *j, const char *casedir)
+static void make_template(const char *casedir, const char *templ)
 {
-    if (gf_exists(j->templ)) return;
+    if (gf_exists(templ)) return;
     char *tmp = NULL;
-    if (asprintf(&tmp, "%s.tmp", j->templ) < 0) die("out of memory");
+    if (asprintf(&tmp, "%s.tmp", templ) < 0) die("out of memory");
     char *rm[] = {"rm", "-rf", tmp, NULL};
     gf_run(rm, NULL);
     gf_case_controls ctl;
@@ -820,7 +1402,8 @@ static void make_template(const job *j, const char *casedir)
     char *cd = gf_path(tmp, "system/controlDict");
     if (ctl.has_path_analysis) {
         /* the case's path is that of its own release, not of every release area */
-        char *log = gf_path(j->dir, "log.template");
+        char *log = NULL;
+        if (asprintf(&log, "%s.log", tmp) < 0) die("out of memory");
         char *fd[] = {"foamDictionary", "-entry", "pathAnalysis", "-remove", cd, NULL};
         if (gf_run(fd, log)) die("cannot remove pathAnalysis from %s (foamDictionary; %s)", cd, log);
         free(log);
@@ -830,7 +1413,7 @@ static void make_template(const job *j, const char *casedir)
              "\n// gfRegionalMap: the members' controls\nwriteInterval %s;\npeakFields yes;\nhazardMaps yes;\n",
              ctl.end_time);
     if (gf_append(cd, text)) die("cannot write %s", cd);
-    if (rename(tmp, j->templ)) die("cannot rename %s", tmp);
+    if (rename(tmp, templ)) die("cannot rename %s", tmp);
     free(tmp), free(cd);
 }
 
@@ -841,6 +1424,8 @@ static void free_all(config *c, areas *A, job *j, char *casereal, char *dp)
     if (A->srs) OSRRelease(A->srs);
     free(c->areas), free(c->only);
     free(j->m), free(j->dir), free(j->templ), free(j->members);
+    free(j->clips);
+    if (j->dem.z) gf_raster_free(&j->dem);
     free(casereal), free(dp);
 }
 
@@ -969,10 +1554,18 @@ int main(int argc, char **argv)
     j.templ = gf_path(j.dir, "template");
     j.members = gf_path(j.dir, "members");
     mkdir(j.members, 0755);
-    make_template(&j, casereal);
+    if (!c.clip) make_template(casereal, j.templ);
+    if (c.clip) {
+        j.casedir = casereal;
+        j.clips = gf_path(j.dir, "clips");
+        mkdir(j.clips, 0755);
+        case_dem(&j, casereal, &j.dem);
+        clip_settings(&j);
+    }
 
     /* the results there are; the refused depths are results too */
     size_t resumed = 0;
+    int rerun_pending = 0;
     for (size_t k = 0; k < j.nm; ++k) {
         member *m = &j.m[k];
         char md[4096];
@@ -985,6 +1578,7 @@ int main(int argc, char **argv)
         if (read_result(md, m)) {
             ++resumed;
             m->depth = d;
+            if (c.clip && leaked(m) && m->buffer < attempt_buffer(&c, c.retries)) rerun_pending = 1;
         }
     }
     j.total = j.nm;
@@ -998,7 +1592,15 @@ int main(int argc, char **argv)
             printf("member %s_r%ld: FAILED (%s)\n", c.s[j.m[k].scen].name, A.r[j.m[k].rel].id, j.m[k].why);
     fflush(stdout);
     j.t0 = now();
-    if (torun) {
+    if (c.clip && (torun || rerun_pending)) {
+        pthread_mutex_init(&j.lock, NULL);
+        const size_t nw = (size_t)np < A.n ? (size_t)np : A.n;
+        pthread_t *th = malloc(nw * sizeof *th);
+        for (size_t t = 0; t < nw; ++t)
+            if (pthread_create(&th[t], NULL, clip_runner, &j)) die("cannot start a thread");
+        for (size_t t = 0; t < nw; ++t) pthread_join(th[t], NULL);
+        free(th);
+    } else if (torun && !c.clip) {
         const size_t nw = (size_t)np < torun ? (size_t)np : torun;
         char *logfmt = gf_path(j.dir, "log.worker_%u");
         char *argvw[] = {"faGranularFlowFoam", "-case", casereal, "-members", "-", NULL};
@@ -1023,18 +1625,33 @@ int main(int argc, char **argv)
     char *csv = gf_path(j.dir, "members.csv");
     FILE *o = fopen(csv, "w");
     if (!o) die("cannot write %s", csv);
-    fprintf(o, "release,scenario,depth_m,status,seconds,affected_m2,maxPressure_kPa,reason\n");
+    fprintf(o, "release,scenario,depth_m,status,seconds,affected_m2,maxPressure_kPa,reason%s\n",
+            c.clip ? ",outflow_m3,volume_m3,clipBuffer_m" : "");
+    size_t nleak = 0;
     for (size_t k = 0; k < j.nm; ++k) {
         const member *m = &j.m[k];
         fprintf(o, "%ld,%s,%.4f,%s,%.2f,", A.r[m->rel].id, c.s[m->scen].name, m->depth, m->ok ? "ok" : "failed",
                 m->seconds);
-        if (m->ok)
-            fprintf(o, "%.1f,%.3f,\n", m->affected, m->maxppr);
-        else {
+        if (m->ok && c.clip && leaked(m)) {
+            ++nleak;
+            fprintf(o, "%.1f,%.3f,\"flow left through the clip's boundary: %.4g m3 of %.4g m3 with a %g m buffer "
+                       "(clip buffer x 2^retries); its maps lack what went beyond\"",
+                    m->affected, m->maxppr, m->outflow, m->volume, m->buffer);
+        } else if (m->ok) {
+            fprintf(o, "%.1f,%.3f,", m->affected, m->maxppr);
+        } else {
             fprintf(o, ",,\"");
             for (const char *p = m->why; *p; ++p) fputc(*p == '"' ? '\'' : *p, o);
-            fprintf(o, "\"\n");
+            fprintf(o, "\"");
         }
+        if (c.clip) {
+            if (m->ok)
+                fprintf(o, ",%.6g,%.6g,%s", m->outflow, m->volume, m->whole ? "whole" : "");
+            else
+                fprintf(o, ",,,");
+            if (m->ok && !m->whole) fprintf(o, "%g", m->buffer);
+        }
+        fprintf(o, "\n");
     }
     fclose(o);
     char *sum = gf_path(j.dir, "summary.txt");
@@ -1047,7 +1664,7 @@ int main(int argc, char **argv)
     fprintf(S, " kPa\n");
     for (size_t s = 0; s < c.ns; ++s) {
         char *od = gf_path(j.dir, c.s[s].name);
-        const size_t nmg = merge(&j, s, od);
+        const size_t nmg = c.clip ? merge_clipped(&j, s, od) : merge(&j, s, od);
         double amax = 0, pmax = 0;
         for (size_t k = 0; k < j.nm; ++k)
             if (j.m[k].scen == s && j.m[k].ok) {
@@ -1062,11 +1679,16 @@ int main(int argc, char **argv)
     for (size_t k = 0; k < j.nm; ++k)
         if (!j.m[k].ok)
             fprintf(S, "FAILED %s_r%ld: %s\n", c.s[j.m[k].scen].name, A.r[j.m[k].rel].id, j.m[k].why);
+        else if (c.clip && leaked(&j.m[k]))
+            fprintf(S, "BOUNDARY %s_r%ld: %.4g m3 of %.4g m3 left through the clip's boundary (buffer %g m)\n",
+                    c.s[j.m[k].scen].name, A.r[j.m[k].rel].id, j.m[k].outflow, j.m[k].volume, j.m[k].buffer);
+    if (c.clip) fprintf(S, "clip: buffer %g m, reach %g m, climb %g m, retries %ld\n", c.buffer, c.reach, c.climb, c.retries);
     fclose(S);
     if (with_ab) alpha_beta(&j, casereal);
     const size_t ran_now = torun;
     printf("members=%zu\nran=%zu\nresumed=%zu\nfailed=%zu\nseconds=%.1f\nsecondsPerMember=%.2f\n", j.nm, ran_now,
            resumed, nfailed, wall, nran ? sec_sum / (double)nran : 0.0);
+    if (c.clip) printf("boundary=%zu\n", nleak);
     free(csv), free(sum);
     free_all(&c, &A, &j, casereal, dp);
     return nfailed ? 3 : 0;

@@ -190,6 +190,22 @@ gf_status gf_alpha_beta_profile(size_t n, const double *s, const double *z, cons
 gf_status gf_thalweg_d8(const gf_raster *dem, int col, int row, double max_climb, double max_flat, double **xyzs,
                        size_t *n);
 
+/* ---- the clipped sub-domain of a release ------------------------------ */
+
+/* The box of a release's sub-domain on dem, in pixels: box = col0 row0 col1
+ * row1 (inclusive) of the n cells (indices row * nx + col; NODATA ones
+ * skipped) and of the steepest-descent paths leaving them: from every cell
+ * whose steepest lower neighbour is not a release cell (or that has none), the
+ * walk of gf_thalweg_d8 (pits up to max_climb [m] walked through, level
+ * ground followed for max_flat [m] without a new lowest point), ending also
+ * where it meets an earlier path of the release.  The cost is that of the
+ * release's cells and paths, not of the grid (no array of the grid's size).
+ * path_cells (may be NULL): the cells on the paths.  The caller adds the
+ * buffer.  Refused: no valid cell, a cell outside the grid, max_climb or
+ * max_flat < 0 or not finite. */
+gf_status gf_downslope_box(const gf_raster *dem, size_t n, const size_t *cells, double max_climb, double max_flat,
+                           int box[4], size_t *path_cells);
+
 /* ---- merge of many releases' peak rasters ----------------------------- */
 
 /* Per cell c of ncell, over the m rasters fields[k] (NAN: not reached):
