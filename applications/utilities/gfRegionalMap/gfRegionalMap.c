@@ -5,6 +5,9 @@
  * (issue 52; doc/guide/regional.md, doc/theory/regional.md):
  *
  *   gfRegionalMap [-dict FILE] [-out DIR] [-np N] [-check] [-alphaBeta] CASE
+ *   gfRegionalMap -slurm [-tasks T] [-np N] [-dict FILE] [-out DIR] [-alphaBeta] CASE
+ *   gfRegionalMap -task K -tasks T [-np N] [-dict FILE] [-out DIR] CASE
+ *   gfRegionalMap -collect [-dict FILE] [-out DIR] [-alphaBeta] CASE
  *   gfRegionalMap -help | -version
  *
  * CASE is a meshed terrain case whose system/controlDict sets the release
@@ -26,6 +29,13 @@
  *         small { d0Star 0.5; }                   // d0 = (d0* + gradient (z - zRef)) f(slope)
  *         large { d0Star 1.0; gradient 0; }       // gradient, zRef per scenario override the top's
  *         given { thicknessAttribute d0_m; factor 1.2; }  // the polygon's own depth x factor
+ *     }
+ *     clip                            // optional: each release on its own clipped mesh
+ *     {
+ *         buffer   300;    // [m] around the release and its paths, in [0, 100000] (default 300)
+ *         reach    1000;   // [m] a path goes on along level ground this far, in [0, 100000] (1000)
+ *         climb    5;      // [m] pits this deep are walked through, in [0, 100] (5)
+ *         retries  2;      // runs again on a buffer x 2 (100 m from 0), in [0, 6] (2)
  *     }
  *
  * gfReleaseAreas -d0 writes such polygons (id, slope_deg, altitude_m, d0_m);
@@ -59,6 +69,32 @@
  *
  * -check reads the dictionary and the polygons and prints every member with
  * its depth, writing nothing.
+ *
+ * clip: each release runs on a mesh of its own part of the case's DEM
+ * (doc/theory/regional.md, section 5): the box of its cells and of the
+ * steepest-descent paths leaving them (gf_downslope_box: D8, pits up to climb
+ * deep walked through, level ground followed for reach), widened by buffer
+ * and aligned to the case's coarsened node grid, cut from the DEM
+ * (OUT/clips/rID_bBUFFER/Inputs/clipDEM.tif: the region's pixels), meshed by
+ * gfTerrainMesh with the case's coarsen and depth, and run on one worker for
+ * all its scenarios; the cost grows with the releases, not with releases x
+ * region.  The members' rasters are on their clip's grid; the merge places
+ * them on the region's (the case's DEM: the same pixel size, an origin whole
+ * pixels away, both checked); a DEM cell no clip holds is 0 (not reached).
+ * A member whose flow reaches the outer faces of a clip side where the
+ * region goes on and loses more than 1e-6 of its volume through the mesh's
+ * boundary left its clip: it runs again on the buffer doubled (retries); if
+ * it still does, members.csv says so in its reason (with outflow_m3,
+ * volume_m3, clipBuffer_m) and summary.txt lists it (BOUNDARY), boundary=N.
+ *
+ * -slurm: DIR/slurm/array.sh (task K of T: -task K -tasks T, the members,
+ * with clip the releases, whose index is K - 1 modulo T, those with a result
+ * skipped) and DIR/slurm/collect.sh (-collect) written and submitted with
+ * sbatch, the merge after the array (--dependency=afterany); T default: one
+ * task per member (release) to run, at most 1000; -np N: the workers of a
+ * task (--cpus-per-task).  Prints array=JOB, collect=JOB.  -collect reads
+ * the results and merges (a member without a result is failed with its
+ * reason); submitting again runs only what has no result.
  *
  * -alphaBeta: each release's steepest-descent thalweg from its highest cell
  * of the case's DEM (constant/terrainProperties dem; D8 through pits up to
@@ -429,6 +465,9 @@ typedef struct job {
     double depth_slab;
     char *casedir, *clips;
     size_t next_rel;
+    /* a SLURM array task: task (1..ntasks) runs the members (clipped: the
+     * releases) whose index is task - 1 modulo ntasks; 0: all */
+    long task, ntasks;
 } job;
 
 static void member_dir(const job *j, const member *m, char *buf, size_t size)
@@ -696,13 +735,16 @@ static size_t merge(const job *j, size_t s, char *outdir)
 /* the DEM of the case (constant/terrainProperties dem, relative to the case) */
 static void case_dem(const job *j, const char *casedir, gf_raster *dem)
 {
-    char *tp = gf_path(casedir, "constant/terrainProperties"), *val = gf_path(j->dir, "alphaBeta.dem");
+    /* the value through foamDictionary, into a file of this process (array
+     * tasks of one batch run at once) */
+    char *tp = gf_path(casedir, "constant/terrainProperties"), *val = NULL;
+    if (asprintf(&val, "%s/caseDEM.%ld.%ld", j->dir, (long)getpid(), j->task) < 0) die("out of memory");
     unlink(val);
     char *fd[] = {"foamDictionary", "-entry", "dem", "-value", tp, NULL};
-    if (gf_run(fd, val)) die("-alphaBeta: no dem entry in %s (foamDictionary)", tp);
+    if (gf_run(fd, val)) die("no dem entry in %s (foamDictionary; the case's DEM)", tp);
     FILE *in = fopen(val, "r");
     char line[4096] = "";
-    if (!in || !fgets(line, sizeof line, in)) die("-alphaBeta: no dem entry in %s", tp);
+    if (!in || !fgets(line, sizeof line, in)) die("no dem entry in %s (the case's DEM)", tp);
     fclose(in);
     unlink(val);
     line[strcspn(line, "\r\n")] = 0;
@@ -710,7 +752,7 @@ static void case_dem(const job *j, const char *casedir, gf_raster *dem)
     while (*b == '"' || *b == ' ') ++b;
     while (e > b && (e[-1] == '"' || e[-1] == ' ')) *--e = 0;
     char *path = b[0] == '/' ? strdup(b) : gf_path(casedir, b);
-    if (gf_raster_read(path, dem)) die("-alphaBeta: the case's DEM %s: %s", path, gf_error_detail());
+    if (gf_raster_read(path, dem)) die("the case's DEM %s: %s", path, gf_error_detail());
     free(tp), free(val), free(path);
 }
 
@@ -1290,6 +1332,7 @@ static void *clip_runner(void *arg)
         const size_t r = j->next_rel++;
         pthread_mutex_unlock(&j->lock);
         if (r >= j->A->n) return NULL;
+        if (j->task && (long)(r % (size_t)j->ntasks) != j->task - 1) continue;
         run_release(j, r);
     }
 }
@@ -1376,6 +1419,71 @@ static size_t merge_clipped(const job *j, size_t s, char *outdir)
     return n;
 }
 
+/*---------------------------------------------------------------- SLURM --*/
+
+/* a shell word: 'text' (the paths are OpenFOAM-safe: no quote in them) */
+static void sh_word(FILE *o, const char *s) { fprintf(o, "'%s'", s); }
+
+/* -slurm: DIR/slurm/array.sh (task K of N: gfRegionalMap -task K -tasks N)
+ * and DIR/slurm/collect.sh (gfRegionalMap -collect), submitted with sbatch,
+ * the collecting job after the array (afterany) */
+static void submit(const job *j, const char *dp, const char *casedir, long np, long ntasks, int with_ab)
+{
+    size_t units = 0;
+    if (j->c->clip) {
+        for (size_t r = 0; r < j->A->n; ++r) {
+            int pending = 0;
+            for (size_t s = 0; s < j->c->ns; ++s) pending |= !j->m[s * j->A->n + r].done;
+            units += pending;
+        }
+    } else {
+        for (size_t k = 0; k < j->nm; ++k) units += !j->m[k].done;
+    }
+    if (!ntasks) ntasks = units ? (long)(units < 1000 ? units : 1000) : 1;
+    char *sd = gf_path(j->dir, "slurm");
+    mkdir(sd, 0755);
+    char *arr = gf_path(sd, "array.sh"), *col = gf_path(sd, "collect.sh");
+    FILE *o = fopen(arr, "w");
+    if (!o) die("cannot write %s", arr);
+    fprintf(o, "#!/bin/bash\n# gfRegionalMap -slurm: array task K of %ld runs the %s whose index is K - 1 modulo %ld\n"
+               "# (those with a result are not run again); then slurm/collect.sh merges\n#SBATCH --job-name=gfRegionalMap\n"
+               "#SBATCH --cpus-per-task=%ld\nexec gfRegionalMap -task \"$SLURM_ARRAY_TASK_ID\" -tasks %ld -np %ld -dict ",
+            ntasks, j->c->clip ? "releases (every scenario of each)" : "members", ntasks, np, ntasks, np);
+    sh_word(o, dp), fprintf(o, " -out "), sh_word(o, j->dir), fprintf(o, " "), sh_word(o, casedir), fprintf(o, "\n");
+    if (fclose(o)) die("cannot write %s", arr);
+    o = fopen(col, "w");
+    if (!o) die("cannot write %s", col);
+    fprintf(o, "#!/bin/bash\n# gfRegionalMap -slurm: the merge when the array has ended\n#SBATCH --job-name=gfRegionalMap-collect\n"
+               "exec gfRegionalMap -collect%s -dict ", with_ab ? " -alphaBeta" : "");
+    sh_word(o, dp), fprintf(o, " -out "), sh_word(o, j->dir), fprintf(o, " "), sh_word(o, casedir), fprintf(o, "\n");
+    if (fclose(o)) die("cannot write %s", col);
+    chmod(arr, 0755), chmod(col, 0755);
+    char range[64], outa[4200], outc[4200], dep[128];
+    snprintf(range, sizeof range, "--array=1-%ld", ntasks);
+    snprintf(outa, sizeof outa, "--output=%s/task_%%a.out", sd);
+    snprintf(outc, sizeof outc, "--output=%s/collect.out", sd);
+    char *idf = gf_path(sd, "array.jobid"), *idc = gf_path(sd, "collect.jobid");
+    char *sb1[] = {"sbatch", "--parsable", range, outa, arr, NULL};
+    if (gf_run(sb1, idf)) die("sbatch %s failed (%s): the scripts are in %s", arr, idf, sd);
+    char id1[128] = "";
+    FILE *in = fopen(idf, "r");
+    if (!in || !fgets(id1, sizeof id1, in)) die("sbatch gave no job id (%s)", idf);
+    fclose(in);
+    id1[strcspn(id1, ";\r\n")] = 0;
+    snprintf(dep, sizeof dep, "--dependency=afterany:%s", id1);
+    char *sb2[] = {"sbatch", "--parsable", dep, outc, col, NULL};
+    if (gf_run(sb2, idc)) die("sbatch %s failed (%s)", col, idc);
+    char id2[128] = "";
+    in = fopen(idc, "r");
+    if (!in || !fgets(id2, sizeof id2, in)) die("sbatch gave no job id (%s)", idc);
+    fclose(in);
+    id2[strcspn(id2, ";\r\n")] = 0;
+    printf("gfRegionalMap -slurm: %zu %s to run in %ld array tasks: job %s (%s), then the merge: job %s (%s)\n"
+           "array=%s\ncollect=%s\ntasks=%ld\n",
+           units, j->c->clip ? "releases" : "members", ntasks, id1, arr, id2, col, id1, id2, ntasks);
+    free(sd), free(arr), free(col), free(idf), free(idc);
+}
+
 /*---------------------------------------------------------------- main --*/
 
 static void check_path(const char *what, const char *path)
@@ -1434,6 +1542,9 @@ static void usage(int st)
     FILE *f = st ? stderr : stdout;
     fprintf(f,
             "usage: gfRegionalMap [-dict FILE] [-out DIR] [-np N] [-check] [-alphaBeta] CASE\n"
+            "       gfRegionalMap -slurm [-tasks T] [-np N] [-dict FILE] [-out DIR] [-alphaBeta] CASE\n"
+            "       gfRegionalMap -task K -tasks T [-np N] [-dict FILE] [-out DIR] CASE\n"
+            "       gfRegionalMap -collect [-dict FILE] [-out DIR] [-alphaBeta] CASE\n"
             "       gfRegionalMap -help | -version\n\n"
             "Every release area x scenario of FILE (default CASE/system/regionalDict) run as\n"
             "a member of the meshed terrain case CASE on N ensemble workers (default: the\n"
@@ -1442,7 +1553,10 @@ static void usage(int st)
             "(DIR default CASE-regional).  Started again, members with a result are read,\n"
             "not run.  -check: the dictionary and the polygons checked, each member's depth\n"
             "printed, nothing written.  -alphaBeta: each release's alpha-beta runout beside\n"
-            "its members' dynamic runout along its thalweg (DIR/alphaBeta.csv).  The dictionary's format: the header of\n"
+            "its members' dynamic runout along its thalweg (DIR/alphaBeta.csv).  -slurm: a job\n"
+            "array of T tasks (-task K -tasks T each) and the merge after it (-collect), submitted\n"
+            "with sbatch.  The dictionary's format (clip { buffer reach climb retries }: each\n"
+            "release on its own clipped mesh): the header of\n"
             "applications/utilities/gfRegionalMap/gfRegionalMap.c, doc/guide/regional.md.\n");
     exit(st);
 }
@@ -1451,13 +1565,15 @@ int main(int argc, char **argv)
 {
     long np = sysconf(_SC_NPROCESSORS_ONLN);
     const char *dictp = NULL, *out = NULL, *casedir = NULL;
-    int check_only = 0, with_ab = 0;
+    int check_only = 0, with_ab = 0, slurm = 0, collect = 0, np_given = 0;
+    long task = 0, ntasks = 0;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "-np") == 0 && i + 1 < argc) {
             double v;
             if (!gf_parse_number(argv[++i], &v) || v != floor(v) || v < 1 || v > 256)
                 die("-np %s: a whole number in [1, 256]", argv[i]);
             np = (long)v;
+            np_given = 1;
         } else if (strcmp(argv[i], "-dict") == 0 && i + 1 < argc) {
             dictp = argv[++i];
         } else if (strcmp(argv[i], "-out") == 0 && i + 1 < argc) {
@@ -1466,6 +1582,20 @@ int main(int argc, char **argv)
             check_only = 1;
         } else if (strcmp(argv[i], "-alphaBeta") == 0) {
             with_ab = 1;
+        } else if (strcmp(argv[i], "-slurm") == 0) {
+            slurm = 1;
+        } else if (strcmp(argv[i], "-collect") == 0) {
+            collect = 1;
+        } else if ((strcmp(argv[i], "-task") == 0 || strcmp(argv[i], "-tasks") == 0) && i + 1 < argc) {
+            double v;
+            const int is_task = strcmp(argv[i], "-task") == 0;
+            ++i;
+            if (!gf_parse_number(argv[i], &v) || v != floor(v) || v < 1 || v > 100000)
+                die("%s %s: a whole number in [1, 100000]", argv[i - 1], argv[i]);
+            if (is_task)
+                task = (long)v;
+            else
+                ntasks = (long)v;
         } else if (strcmp(argv[i], "-help") == 0 || strcmp(argv[i], "--help") == 0) {
             usage(0);
         } else if (strcmp(argv[i], "-version") == 0) {
@@ -1481,6 +1611,9 @@ int main(int argc, char **argv)
         }
     }
     if (!casedir) usage(2);
+    if (slurm + collect + (task > 0) + check_only > 1) die("-slurm, -collect, -task and -check: one at a time");
+    if (task && !ntasks) die("-task K needs -tasks N (the array's size)");
+    if (task > ntasks) die("-task %ld: outside the array's 1..%ld (-tasks)", task, ntasks);
     char *casereal = realpath(casedir, NULL);
     if (!casereal) die("%s: %s", casedir, strerror(errno));
     {
@@ -1490,6 +1623,14 @@ int main(int argc, char **argv)
     }
     char *dp = dictp ? strdup(dictp) : gf_path(casereal, "system/regionalDict");
     if (!gf_exists(dp)) die("%s: no such dictionary (-dict FILE, default CASE/system/regionalDict)", dp);
+    if (slurm && !np_given) np = 1; /* a task's workers: --cpus-per-task */
+    if (slurm) {
+        check_path("-dict", dp);
+        char *a = realpath(dp, NULL);
+        if (!a) die("%s: %s", dp, strerror(errno));
+        free(dp);
+        dp = a;
+    }
     GDALAllRegister();
     CPLSetErrorHandler(CPLQuietErrorHandler);
     config c;
@@ -1581,9 +1722,33 @@ int main(int argc, char **argv)
             if (c.clip && leaked(m) && m->buffer < attempt_buffer(&c, c.retries)) rerun_pending = 1;
         }
     }
+    j.task = task, j.ntasks = ntasks;
+    size_t others = 0;
+    if (task)
+        for (size_t k = 0; k < j.nm; ++k) {
+            member *m = &j.m[k];
+            const size_t unit = c.clip ? m->rel : k;
+            if ((long)(unit % (size_t)ntasks) != task - 1 && !m->done) m->done = 1, ++others;
+        }
+    if (slurm) {
+        submit(&j, dp, casereal, np, ntasks, with_ab);
+        free_all(&c, &A, &j, casereal, dp);
+        return 0;
+    }
     j.total = j.nm;
-    j.finished = resumed + nbad;
-    const size_t torun = j.nm - j.finished;
+    j.finished = resumed + nbad + others;
+    size_t torun = j.nm - j.finished;
+    if (collect) {
+        /* the array's results: a member without one is failed, not run here */
+        for (size_t k = 0; k < j.nm; ++k) {
+            member *m = &j.m[k];
+            if (m->done) continue;
+            m->done = 1, m->ok = 0;
+            snprintf(m->why, sizeof m->why,
+                     "no result: its array task has not run it (gfRegionalMap -slurm again runs what has none)");
+        }
+        torun = 0, rerun_pending = 0;
+    }
     printf("gfRegionalMap: %zu releases x %zu scenarios = %zu members: %zu resumed, %zu refused, %zu to run on %ld "
            "workers (%s)\n",
            A.n, c.ns, j.nm, resumed, nbad, torun, torun ? (np < (long)torun ? np : (long)torun) : 0L, j.dir);
@@ -1614,6 +1779,20 @@ int main(int argc, char **argv)
         free(th), free(logfmt);
     }
     const double wall = now() - j.t0;
+    if (task) {
+        size_t mine = 0, bad_mine = 0;
+        for (size_t k = 0; k < j.nm; ++k) {
+            const member *m = &j.m[k];
+            const size_t unit = c.clip ? m->rel : k;
+            if ((long)(unit % (size_t)ntasks) != task - 1) continue;
+            ++mine;
+            bad_mine += !m->ok;
+        }
+        printf("task %ld of %ld: %zu members, %zu ran now, %zu failed; %.1f s (gfRegionalMap -collect merges)\n", task,
+               ntasks, mine, torun, bad_mine, wall);
+        free_all(&c, &A, &j, casereal, dp);
+        return bad_mine ? 3 : 0;
+    }
 
     /* the merge and the tables */
     size_t nfailed = 0, nran = 0;
