@@ -68,6 +68,7 @@ Usage
 #include "granularModel.H"
 #include "faConvectionScheme.H"
 #include "fullOperators.H"
+#include "implicitDeferred.H"
 #include "relaxConsistent.H"
 #include "fixFacesAtRest.H"
 #include "granularBoundaries.H"
