@@ -71,7 +71,7 @@
  * its depth, writing nothing.
  *
  * clip: each release runs on a mesh of its own part of the case's DEM
- * (doc/theory/regional.md, section 5): the box of its cells and of the
+ * (doc/theory/regional.md, section 6): the box of its cells and of the
  * steepest-descent paths leaving them (gf_downslope_box: D8, pits up to climb
  * deep walked through, level ground followed for reach), widened by buffer
  * and aligned to the case's coarsened node grid, cut from the DEM

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * granflow — the clipped sub-domain of one release (issue 52, scale;
- * doc/theory/regional.md, section 5): the box of its cells and of the
+ * doc/theory/regional.md, section 6): the box of its cells and of the
  * steepest-descent paths from them, so that a release runs on a mesh whose
  * size depends on its own path, not on the region.
  */
