@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The Processing provider "granflow": Avalanche simulation, Path analysis,
-Probability map, Back-calculate an event; its setting "granflow folder" (GRANFLOW_DIR)."""
+Probability map, Back-calculate an event, Potential release areas,
+Regional hazard indication map; its setting "granflow folder" (GRANFLOW_DIR)."""
 import os
 
 from qgis.core import QgsProcessingProvider
@@ -9,6 +10,8 @@ from qgis.PyQt.QtGui import QIcon
 from .calibration import Calibration
 from .path_analysis import PathAnalysis
 from .probability import ProbabilityMap
+from .regional_map import RegionalMap
+from .release_areas import ReleaseAreas
 from .runner import SETTING_DIR
 from .simulation import Simulation
 
@@ -49,5 +52,5 @@ class GranflowProvider(QgsProcessingProvider):
             pass
 
     def loadAlgorithms(self):
-        for alg in (Simulation(), PathAnalysis(), ProbabilityMap(), Calibration()):
+        for alg in (Simulation(), PathAnalysis(), ProbabilityMap(), Calibration(), ReleaseAreas(), RegionalMap()):
             self.addAlgorithm(alg)
