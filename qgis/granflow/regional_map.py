@@ -55,6 +55,20 @@ MAPS = [('pressurePeakMax', 'largest peak pressure [kPa]'), ('hPeakMax', 'larges
 ZONE_COLOURS = ['#ffdd00', '#1e6edc', '#d7191c', '#780050', '#3c0028', '#000000', '#000000', '#000000', '#000000']
 
 
+# the dictionary's keys -> the parameters that wrote them
+KEYS = [('scenarios', 'SCENARIOS'), ('idAttribute', 'ID_FIELD'), ('releaseAreas', 'RELEASE_AREAS'),
+        ('gradient', 'GRADIENT'), ('zRef', 'ZREF'), ('threshold', 'THRESHOLD'), ('zones', 'ZONES')]
+
+
+def explain(why, dict_path):
+    """gfRegionalMap's refusal of the dictionary the algorithm wrote: the
+    dictionary named as such, the parameter behind the key it names first."""
+    why = why.replace(dict_path, 'the dictionary written from the parameters ({})'.format(dict_path))
+    found = [(m.start(), key) for words, key in KEYS
+             for m in [re.search(r'(^|[\s:(])' + re.escape(words) + r'($|[\s:;,)/])', why)] if m]
+    return '{}: {}'.format(min(found)[1], why) if found else why
+
+
 class ZoneClasses(QgsProcessingLayerPostProcessorInterface):
     """zones.tif: class k (above the k-th limit) in gfReportMaps' colours;
     class 0 not drawn."""
@@ -235,8 +249,10 @@ class RegionalMap(GranflowAlgorithm):
         # gfRegionalMap's own check first: nothing written when it refuses
         rc, lines = run_tool(['gfRegionalMap', '-check', '-dict', dict_path, case], feedback)
         if rc != 0:
-            raise QgsProcessingException('gfRegionalMap refused the dictionary (exit status {}): {}'
-                                         .format(rc, failure('gfRegionalMap', lines)))
+            why = failure('gfRegionalMap', lines)
+            if not self.has_value(parameters, 'DICT'):
+                why = explain(why, dict_path)
+            raise QgsProcessingException('gfRegionalMap refused the dictionary (exit status {}): {}'.format(rc, why))
         m = next((re.search(r'= (\d+) members', l) for l in lines if re.search(r'= (\d+) members', l)), None)
         feedback.pushInfo('{} members'.format(m.group(1) if m else 'no'))
 
