@@ -188,6 +188,61 @@ static void outline_scores_on_hand_made_masks(void **state)
     assert_int_equal(gf_score_outline(16, inf_sim, 1.0, obs, valid, 25.0, 1, 1, &s), GF_ENONFINITE);
 }
 
+/* The front along the path from an arrival-time map, by hand: cells at
+ * s = 0, 5, .., 495 m on the path (l = 0) reached at s/10 s up to s = 400 m
+ * (a front at 10 m/s that stops there), never beyond (NaN); one cell 500 m
+ * off the path at s = 1000 m reached at 0 s (outside a 300 m half width: not
+ * the front).  Front at 20 s: 200 m; at 0.05 s: 0 m; at 60 s: 400 m; speed
+ * at 20 s (window 2 s): (220 - 180)/4 = 10 m/s; at 1 s: (30 - 0)/3 = 10
+ * (one-sided from 0); at 60 s: 0 (stopped); before the start: NaN.  The
+ * loss's front speed term: speed RMSE 2 m/s at scale 4 m/s (weight 2) with
+ * the position RMSE 10 m at scale 20 m (weight 1): (0.5 + 2 * 0.5)/3 = 0.5. */
+static void front_position_and_speed_from_arrival_times(void **state)
+{
+    (void)state;
+    enum { N = 101 };
+    double ta[N], s[N], l[N], x;
+    for (int i = 0; i < 100; ++i) {
+        s[i] = 5.0 * i;
+        l[i] = 0;
+        ta[i] = s[i] <= 400 ? s[i] / 10 : NAN;
+    }
+    s[100] = 1000, l[100] = 500, ta[100] = 0;
+    assert_int_equal(gf_front_position(N, ta, s, l, 300, 20, &x), GF_SUCCESS);
+    assert_close(x, 200, 0);
+    assert_int_equal(gf_front_position(N, ta, s, l, 300, 0.05, &x), GF_SUCCESS);
+    assert_close(x, 0, 0);
+    assert_int_equal(gf_front_position(N, ta, s, l, 300, 60, &x), GF_SUCCESS);
+    assert_close(x, 400, 0);
+    assert_int_equal(gf_front_position(N, ta, s, l, 600, 0, &x), GF_SUCCESS);
+    assert_close(x, 1000, 0); /* the wider corridor takes the far cell */
+    assert_int_equal(gf_front_position(N, ta, s, l, 300, -1, &x), GF_SUCCESS);
+    assert_true(isnan(x));
+    assert_int_equal(gf_front_speed(N, ta, s, l, 300, 20, 2, &x), GF_SUCCESS);
+    assert_close(x, 10, 1e-12);
+    assert_int_equal(gf_front_speed(N, ta, s, l, 300, 1, 2, &x), GF_SUCCESS);
+    assert_close(x, 10, 1e-12);
+    assert_int_equal(gf_front_speed(N, ta, s, l, 300, 60, 2, &x), GF_SUCCESS);
+    assert_close(x, 0, 0);
+    /* refusals */
+    assert_int_equal(gf_front_position(0, ta, s, l, 300, 20, &x), GF_EINVAL);
+    assert_int_equal(gf_front_position(N, NULL, s, l, 300, 20, &x), GF_EINVAL);
+    assert_int_equal(gf_front_position(N, ta, s, l, 0, 20, &x), GF_EDOM);
+    assert_int_equal(gf_front_position(N, ta, s, l, 300, NAN, &x), GF_EDOM);
+    assert_int_equal(gf_front_speed(N, ta, s, l, 300, 20, 0, &x), GF_EDOM);
+
+    gf_scores sc = {.runout_error = NAN, .tversky = NAN, .rmse = NAN, .series_rmse = 10, .speed_rmse = 2};
+    gf_loss_weights w = {.series = 1, .series_scale = 20, .speed = 2, .speed_scale = 4};
+    double L;
+    assert_int_equal(gf_loss(&sc, &w, &L), GF_SUCCESS);
+    assert_close(L, 0.5, 1e-15);
+    sc.speed_rmse = -1;
+    assert_int_equal(gf_loss(&sc, &w, &L), GF_EDOM);
+    sc.speed_rmse = NAN; /* not observed: the position alone */
+    assert_int_equal(gf_loss(&sc, &w, &L), GF_SUCCESS);
+    assert_close(L, 0.5, 1e-15);
+}
+
 /* Deposit RMSE, runout error, series RMSE and the weighted loss, by hand:
  * sim (1, 2, 0, NaN), obs (1.5, 0, 0, 1): over the union (cells 0, 1, 3)
  * sqrt((0.25 + 4 + 1)/3) = sqrt(1.75); over the observed deposit (0, 3)
@@ -240,7 +295,7 @@ static void deposit_runout_series_scores_and_the_loss(void **state)
     gf_loss_weights w0 = w;
     w0.runout_scale = 0;
     assert_int_equal(gf_loss(&s, &w0, &L), GF_EDOM);
-    gf_scores none = {NAN, NAN, NAN, NAN};
+    gf_scores none = {NAN, NAN, NAN, NAN, NAN};
     assert_int_equal(gf_loss(&none, &w, &L), GF_EDOM);
     w0 = w;
     w0.outline = -1;
@@ -546,6 +601,7 @@ int main(void)
         cmocka_unit_test(morris_effects_of_linear_and_inert_parameters),
         cmocka_unit_test(outline_scores_on_hand_made_masks),
         cmocka_unit_test(deposit_runout_series_scores_and_the_loss),
+        cmocka_unit_test(front_position_and_speed_from_arrival_times),
         cmocka_unit_test(nelder_mead_finds_the_minimum_inside_the_box),
         cmocka_unit_test(abc_ranges_cover_the_truth_and_narrow),
         cmocka_unit_test(emulator_reports_the_ridge_and_the_bowl),

@@ -469,15 +469,22 @@ static void peak_fields_are_the_maxima_over_all_steps(void **state)
     const size_t nf = sm->m.n_faces;
     double *hp = calloc(nf, sizeof *hp), *up = calloc(nf, sizeof *up);
     double *hs = calloc(nf, sizeof *hs), *us = calloc(nf, sizeof *us);
+    double *ta = malloc(nf * sizeof *ta), *ts = malloc(nf * sizeof *ts);
+    const double h_arrive = 0.01; /* the arrival thickness [m] */
     memcpy(hp, h, nf * sizeof *h);
     memcpy(hs, h, nf * sizeof *h);
+    for (size_t f = 0; f < nf; ++f) ta[f] = ts[f] = h[f] >= h_arrive ? 0 : -1;
+    double t = 0;
     for (int n = 0; n < 300; ++n) {
         double dt;
         assert_int_equal(gf_surface_max_dt(s, &dt), GF_SUCCESS);
         assert_int_equal(gf_surface_step(s, dt), GF_SUCCESS);
+        t += dt;
         gf_surface_update_peaks(s, hp, up);
+        gf_surface_update_arrival_mapped(s, NULL, t, h_arrive, ta);
         const double *hn = gf_surface_h(s), *m = gf_surface_momentum(s);
         for (size_t f = 0; f < nf; ++f) {
+            if (ts[f] < 0 && hn[f] >= h_arrive) ts[f] = t;
             hs[f] = fmax(hs[f], hn[f]);
             if (hn[f] > c.h_dry)
                 us[f] = fmax(us[f], sqrt(m[3 * f] * m[3 * f] + m[3 * f + 1] * m[3 * f + 1] +
@@ -489,15 +496,25 @@ static void peak_fields_are_the_maxima_over_all_steps(void **state)
     for (size_t f = 0; f < nf; ++f) {
         assert_close(hp[f], hs[f], 0);
         assert_close(up[f], us[f], 1e-15 * (1 + us[f])); /* m/h against m (1/h) */
+        /* the arrival time: the first step end with h >= h_arrive, every face
+         * scanned (the kernel visits the active set only), -1 where never */
+        assert_true(ta[f] == ts[f]);
+        assert_true((ta[f] >= 0) == (hp[f] >= h_arrive));
         reached += hp[f] > 0;
         umax = fmax(umax, up[f]);
     }
-    printf("  peaks: %zu of %zu faces reached, peak speed %.3f m/s\n", reached, nf, umax);
+    size_t arrived = 0;
+    double tlast = 0;
+    for (size_t f = 0; f < nf; ++f)
+        if (ta[f] > 0) ++arrived, tlast = fmax(tlast, ta[f]);
+    printf("  peaks: %zu of %zu faces reached, peak speed %.3f m/s; %zu reached %.2f m after the start,"
+           " the last at %.3f s\n", reached, nf, umax, arrived, h_arrive, tlast);
     assert_true(reached > 0 && reached < nf);
+    assert_true(arrived > 0 && tlast > 0 && tlast <= t);
     assert_true(umax > 1.0);
     gf_surface_free(s);
     strip_mesh_free(sm);
-    free(h), free(hp), free(up), free(hs), free(us);
+    free(h), free(hp), free(up), free(hs), free(us), free(ta), free(ts);
 }
 
 /* The total kinetic energy (gf_surface_kinetic_energy, the end condition of

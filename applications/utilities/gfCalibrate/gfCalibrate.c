@@ -2,7 +2,8 @@
 /*
  * gfCalibrate — back-calculate an observed event: the parameters (friction
  * coefficients, the release thickness, any dictionary entry) whose runs
- * reproduce an observed outline, runout and deposit, with what the
+ * reproduce an observed outline, runout, deposit and front (positions and
+ * speeds at given times: radar, video), with what the
  * observation does and does not constrain (doc/theory/calibration.md,
  * doc/guide/back-calculation.md).
  *
@@ -52,9 +53,13 @@
  * documented event re-made from a run): RUN's peak pressure above the
  * threshold (default 1 kPa) as an outline shapefile (outline.shp, the DEM's
  * CRS), the runout point (runout.shp: pathAnalysis's xRunout, yRunout) and
- * the deposit (deposit.tif: the thickness at the run's end); -shift moves
- * the outline by CELLS pixels east, -runoutShift moves the runout point by
- * M metres along the path (noise on the observation).
+ * the deposit (deposit.tif: the thickness at the run's end) and the front
+ * (front.csv: time,x,y,speed at 6 times evenly spread until the front has
+ * done 99 % of its travel along the path, or at -frontTimes "T1 T2 ..."; the front is the
+ * furthest cell along the path the arrival-time map has reached by then,
+ * the speed its central difference over 2 s); -shift moves the outline by
+ * CELLS pixels east, -runoutShift moves the runout point by M metres along
+ * the path (noise on the observation).
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -122,73 +127,18 @@ typedef struct config {
     const char *path;
     param p[MAXP];
     size_t d;
-    char *outline, *runout_point, *deposit;
+    char *outline, *runout_point, *deposit, *front;
     double runout_s;     /* NAN: not given as a number */
     double threshold, alpha, beta, deposit_threshold;
+    double front_window; /* s: the front speed's central difference */
     gf_loss_weights w;
     gf_calib_plan plan;
-    double runout_tol, min_jaccard;
+    double runout_tol, min_jaccard, front_tol, speed_tol;
 } config;
 
-static void bad(const config *c, const gf_dict_entry *e, const char *key, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    fprintf(stderr, "%s: %s", prog, c->path);
-    if (e) fprintf(stderr, ":%d", e->line);
-    fprintf(stderr, ": %s: ", key);
-    vfprintf(stderr, fmt, ap);
-    fprintf(stderr, "\n");
-    va_end(ap);
-    exit(1);
-}
-
-/* a number key of d (default def when absent, NAN def: required) in [lo, hi] */
-static double num(const config *c, const gf_dict *d, const char *key, double def, double lo, double hi)
-{
-    char full[256];
-    snprintf(full, sizeof full, "%s%s%s", d->name, *d->name ? "/" : "", key);
-    const gf_dict_entry *e = gf_dict_find(d, key);
-    if (!e) {
-        if (isnan(def)) bad(c, NULL, full, "required (a number in [%g, %g])", lo, hi);
-        return def;
-    }
-    double v;
-    if (e->sub || e->ntok != 1 || !gf_parse_number(e->tok[0], &v))
-        bad(c, e, full, "expected one number in [%g, %g]", lo, hi);
-    if (!(v >= lo && v <= hi)) bad(c, e, full, "%g is outside the allowed range [%g, %g]", v, lo, hi);
-    return v;
-}
-
-static size_t whole(const config *c, const gf_dict *d, const char *key, double def, double lo, double hi)
-{
-    const double v = num(c, d, key, def, lo, hi);
-    if (v != floor(v)) {
-        char full[256];
-        snprintf(full, sizeof full, "%s/%s", d->name, key);
-        bad(c, gf_dict_find(d, key), full, "%g is not a whole number", v);
-    }
-    return (size_t)v;
-}
-
-static const char *word(const config *c, const gf_dict *d, const char *key)
-{
-    const gf_dict_entry *e = gf_dict_find(d, key);
-    if (!e) return NULL;
-    if (e->sub || e->ntok != 1) bad(c, e, key, "expected one word or \"file name\"");
-    return e->tok[0];
-}
-
-static const gf_dict *sub(const config *c, const gf_dict *d, const char *key, int required)
-{
-    const gf_dict_entry *e = gf_dict_find(d, key);
-    if (!e) {
-        if (required) bad(c, NULL, key, "required: a dictionary { ... }");
-        return NULL;
-    }
-    if (!e->sub) bad(c, e, key, "expected a dictionary { ... }");
-    return e->sub;
-}
+/* the half width of the path's corridor [m]: the path analysis's (a runout
+ * point or a front point further from the path is refused) */
+#define HALF_WIDTH 300.0
 
 static void read_config(const char *path, config *c)
 {
@@ -198,28 +148,28 @@ static void read_config(const char *path, config *c)
     gf_dict *D = gf_dict_read(path, err, sizeof err);
     if (!D) die("%s", err);
 
-    const gf_dict *P = sub(c, D, "parameters", 1);
+    const gf_dict *P = gf_dict_sub(D, "parameters", 1);
     for (size_t k = 0; k < P->n; ++k) {
         gf_dict_entry *e = &P->e[k];
         e->used = 1;
-        if (!e->sub) bad(c, e, e->key, "a parameter is a dictionary { file F; entry E; range (lo hi); } or "
+        if (!e->sub) gf_dict_refuse(c->path, e, e->key, "a parameter is a dictionary { file F; entry E; range (lo hi); } or "
                                        "{ release factor; range (lo hi); }");
-        if (c->d == MAXP) bad(c, e, e->key, "more than %d parameters", MAXP);
+        if (c->d == MAXP) gf_dict_refuse(c->path, e, e->key, "more than %d parameters", MAXP);
         param *p = &c->p[c->d++];
         snprintf(p->name, sizeof p->name, "%s", e->key);
         const gf_dict *s = e->sub;
-        const char *rel = word(c, s, "release");
+        const char *rel = gf_dict_word(s, "release", NULL, 0);
         if (rel) {
-            if (strcmp(rel, "factor") != 0) bad(c, gf_dict_find(s, "release"), "release", "'%s': allowed: factor", rel);
+            if (strcmp(rel, "factor") != 0) gf_dict_refuse(c->path, gf_dict_find(s, "release"), "release", "'%s': allowed: factor", rel);
             p->release = 1;
         } else {
-            const char *f = word(c, s, "file"), *en = word(c, s, "entry");
+            const char *f = gf_dict_word(s, "file", NULL, 0), *en = gf_dict_word(s, "entry", NULL, 0);
             if (!f || !en)
-                bad(c, e, e->key, "needs file (a dictionary of the case, e.g. constant/granularProperties) and "
+                gf_dict_refuse(c->path, e, e->key, "needs file (a dictionary of the case, e.g. constant/granularProperties) and "
                                   "entry (e.g. samosATCoeffs/mu), or release factor");
-            if (f[0] == '/' || strstr(f, "..")) bad(c, gf_dict_find(s, "file"), "file", "'%s': a path inside the case", f);
+            if (f[0] == '/' || strstr(f, "..")) gf_dict_refuse(c->path, gf_dict_find(s, "file"), "file", "'%s': a path inside the case", f);
             if (strcmp(f, "system/controlDict") == 0)
-                bad(c, gf_dict_find(s, "file"), "file", "the run's controls are not calibrated");
+                gf_dict_refuse(c->path, gf_dict_find(s, "file"), "file", "the run's controls are not calibrated");
             snprintf(p->file, sizeof p->file, "%s", f);
             snprintf(p->entry, sizeof p->entry, "%s", en);
         }
@@ -227,80 +177,87 @@ static void read_config(const char *path, config *c)
         if (!r || r->sub || r->ntok != 4 || strcmp(r->tok[0], "(") || strcmp(r->tok[3], ")") ||
             !gf_parse_number(r->tok[1], &p->lo) || !gf_parse_number(r->tok[2], &p->hi) || !(p->hi > p->lo) ||
             !isfinite(p->lo) || !isfinite(p->hi))
-            bad(c, r ? r : e, e->key, "range: expected (lo hi) with lo < hi, finite");
+            gf_dict_refuse(c->path, r ? r : e, e->key, "range: expected (lo hi) with lo < hi, finite");
         if (p->release && !(p->lo >= 0 && p->hi <= 100))
-            bad(c, r, e->key, "a release factor's range lies in [0, 100]");
+            gf_dict_refuse(c->path, r, e->key, "a release factor's range lies in [0, 100]");
     }
-    if (c->d == 0) bad(c, NULL, "parameters", "no parameter to calibrate");
+    if (c->d == 0) gf_dict_refuse(c->path, NULL, "parameters", "no parameter to calibrate");
 
-    const gf_dict *O = sub(c, D, "observations", 1);
+    const gf_dict *O = gf_dict_sub(D, "observations", 1);
     const char *w;
     c->runout_s = NAN;
-    if ((w = word(c, O, "outline"))) c->outline = strdup(w);
-    if ((w = word(c, O, "runoutPoint"))) c->runout_point = strdup(w);
-    if (gf_dict_find(O, "runout")) c->runout_s = num(c, O, "runout", NAN, 0, 1e6);
-    if ((w = word(c, O, "deposit"))) c->deposit = strdup(w);
+    if ((w = gf_dict_word(O, "outline", NULL, 0))) c->outline = strdup(w);
+    if ((w = gf_dict_word(O, "runoutPoint", NULL, 0))) c->runout_point = strdup(w);
+    if (gf_dict_find(O, "runout")) c->runout_s = gf_dict_number(O, "runout", NAN, 0, 1e6);
+    if ((w = gf_dict_word(O, "deposit", NULL, 0))) c->deposit = strdup(w);
+    if ((w = gf_dict_word(O, "front", NULL, 0))) c->front = strdup(w);
     if (c->runout_point && !isnan(c->runout_s))
-        bad(c, gf_dict_find(O, "runout"), "observations", "give runoutPoint or runout, not both");
-    if (!c->outline && !c->runout_point && isnan(c->runout_s) && !c->deposit)
-        bad(c, NULL, "observations", "none given: outline, runoutPoint or runout, deposit");
+        gf_dict_refuse(c->path, gf_dict_find(O, "runout"), "observations", "give runoutPoint or runout, not both");
+    if (!c->outline && !c->runout_point && isnan(c->runout_s) && !c->deposit && !c->front)
+        gf_dict_refuse(c->path, NULL, "observations", "none given: outline, runoutPoint or runout, deposit, front");
 
-    const gf_dict *S = sub(c, D, "scores", 0);
+    const gf_dict *S = gf_dict_sub(D, "scores", 0);
     gf_dict empty = {path, (char *)"scores", NULL, 0};
     if (!S) S = &empty;
-    c->threshold = num(c, S, "threshold", 1, 0, 1e6);
-    c->alpha = num(c, S, "tverskyAlpha", 1, 0, 100);
-    c->beta = num(c, S, "tverskyBeta", 1, 0, 100);
-    c->w.runout = num(c, S, "runoutWeight", 1, 0, 1e6);
-    c->w.runout_scale = num(c, S, "runoutScale", 20, 1e-9, 1e6);
-    c->w.outline = num(c, S, "outlineWeight", 1, 0, 1e6);
-    c->w.rmse = num(c, S, "depositWeight", 1, 0, 1e6);
-    c->w.rmse_scale = num(c, S, "depositScale", 0.5, 1e-9, 1e6);
-    c->deposit_threshold = num(c, S, "depositThreshold", 0.01, 0, 1e3);
-    c->w.series = 0;
-    c->w.series_scale = 1;
+    c->threshold = gf_dict_number(S, "threshold", 1, 0, 1e6);
+    c->alpha = gf_dict_number(S, "tverskyAlpha", 1, 0, 100);
+    c->beta = gf_dict_number(S, "tverskyBeta", 1, 0, 100);
+    c->w.runout = gf_dict_number(S, "runoutWeight", 1, 0, 1e6);
+    c->w.runout_scale = gf_dict_number(S, "runoutScale", 20, 1e-9, 1e6);
+    c->w.outline = gf_dict_number(S, "outlineWeight", 1, 0, 1e6);
+    c->w.rmse = gf_dict_number(S, "depositWeight", 1, 0, 1e6);
+    c->w.rmse_scale = gf_dict_number(S, "depositScale", 0.5, 1e-9, 1e6);
+    c->deposit_threshold = gf_dict_number(S, "depositThreshold", 0.01, 0, 1e3);
+    c->w.series = gf_dict_number(S, "frontWeight", 1, 0, 1e6);
+    c->w.series_scale = gf_dict_number(S, "frontScale", 20, 1e-9, 1e6);
+    c->w.speed = gf_dict_number(S, "frontSpeedWeight", 1, 0, 1e6);
+    c->w.speed_scale = gf_dict_number(S, "frontSpeedScale", 2, 1e-9, 1e6);
+    c->front_window = gf_dict_number(S, "frontSpeedWindow", 2, 1e-6, 1e4);
 
-    const gf_dict *G = sub(c, D, "design", 0);
+    const gf_dict *G = gf_dict_sub(D, "design", 0);
     gf_dict emptyG = {path, (char *)"design", NULL, 0};
     if (!G) G = &emptyG;
     c->plan.d = c->d;
-    c->plan.n_sobol = whole(c, G, "sobol", 8 * (double)c->d + 8, 1, 1e5);
-    c->plan.morris_r = whole(c, G, "morrisTrajectories", 4, 0, 1e4);
-    if (c->plan.morris_r == 1) bad(c, gf_dict_find(G, "morrisTrajectories"), "design/morrisTrajectories", "0 or >= 2");
-    c->plan.morris_p = whole(c, G, "morrisLevels", 4, 2, 100);
-    if (c->plan.morris_p % 2) bad(c, gf_dict_find(G, "morrisLevels"), "design/morrisLevels", "an even number");
-    c->plan.seed = whole(c, G, "seed", 1, 0, 4e9);
+    c->plan.n_sobol = (size_t)gf_dict_whole(G, "sobol", 8 * (double)c->d + 8, 1, 1e5);
+    c->plan.morris_r = (size_t)gf_dict_whole(G, "morrisTrajectories", 4, 0, 1e4);
+    if (c->plan.morris_r == 1) gf_dict_refuse(c->path, gf_dict_find(G, "morrisTrajectories"), "design/morrisTrajectories", "0 or >= 2");
+    c->plan.morris_p = (size_t)gf_dict_whole(G, "morrisLevels", 4, 2, 100);
+    if (c->plan.morris_p % 2) gf_dict_refuse(c->path, gf_dict_find(G, "morrisLevels"), "design/morrisLevels", "an even number");
+    c->plan.seed = (size_t)gf_dict_whole(G, "seed", 1, 0, 4e9);
 
-    const gf_dict *R = sub(c, D, "refinement", 0);
+    const gf_dict *R = gf_dict_sub(D, "refinement", 0);
     gf_dict emptyR = {path, (char *)"refinement", NULL, 0};
     if (!R) R = &emptyR;
-    c->plan.n_starts = whole(c, R, "starts", 2, 0, 100);
-    c->plan.refine_evals = whole(c, R, "evaluations", 10 * (double)c->d + 5, (double)c->d + 1, 1e5);
-    c->plan.step = num(c, R, "step", 0.1, 1e-6, 1);
-    c->plan.tol = num(c, R, "tolerance", 0.01, 1e-9, 1);
+    c->plan.n_starts = (size_t)gf_dict_whole(R, "starts", 2, 0, 100);
+    c->plan.refine_evals = (size_t)gf_dict_whole(R, "evaluations", 10 * (double)c->d + 5, (double)c->d + 1, 1e5);
+    c->plan.step = gf_dict_number(R, "step", 0.1, 1e-6, 1);
+    c->plan.tol = gf_dict_number(R, "tolerance", 0.01, 1e-9, 1);
     c->plan.failed_loss = 10;
 
-    const gf_dict *X = sub(c, D, "exploration", 0);
+    const gf_dict *X = gf_dict_sub(D, "exploration", 0);
     gf_dict emptyX = {path, (char *)"exploration", NULL, 0};
     if (!X) X = &emptyX;
-    c->plan.n_explore = whole(c, X, "points", 8 * (double)c->d, 0, 1e5);
-    c->plan.explore_rounds = whole(c, X, "rounds", 3, 1, 100);
-    c->plan.explore_margin = num(c, X, "margin", 0.5, 0, 10);
+    c->plan.n_explore = (size_t)gf_dict_whole(X, "points", 8 * (double)c->d, 0, 1e5);
+    c->plan.explore_rounds = (size_t)gf_dict_whole(X, "rounds", 3, 1, 100);
+    c->plan.explore_margin = gf_dict_number(X, "margin", 0.5, 0, 10);
 
-    const gf_dict *A = sub(c, D, "acceptance", 0);
+    const gf_dict *A = gf_dict_sub(D, "acceptance", 0);
     gf_dict emptyA = {path, (char *)"acceptance", NULL, 0};
     if (!A) A = &emptyA;
-    c->runout_tol = num(c, A, "runoutTolerance", c->w.runout_scale, 0, 1e6);
-    c->min_jaccard = num(c, A, "minJaccard", 0.8, 0, 1);
+    c->runout_tol = gf_dict_number(A, "runoutTolerance", c->w.runout_scale, 0, 1e6);
+    c->min_jaccard = gf_dict_number(A, "minJaccard", 0.8, 0, 1);
+    c->front_tol = gf_dict_number(A, "frontTolerance", c->w.series_scale, 0, 1e6);
+    c->speed_tol = gf_dict_number(A, "frontSpeedTolerance", c->w.speed_scale, 0, 1e6);
 
     const gf_dict *in = NULL;
     const gf_dict_entry *u = gf_dict_unused(D, &in);
     if (u)
-        bad(c, u, u->key, "unknown key%s%s (allowed: parameters, observations { outline runoutPoint runout deposit }, "
-                          "scores { threshold tverskyAlpha tverskyBeta runoutWeight runoutScale outlineWeight "
-                          "depositWeight depositScale depositThreshold }, design { sobol morrisTrajectories "
+        gf_dict_refuse(c->path, u, u->key, "unknown key%s%s (allowed: parameters, observations { outline runoutPoint runout deposit "
+                          "front }, scores { threshold tverskyAlpha tverskyBeta runoutWeight runoutScale outlineWeight "
+                          "depositWeight depositScale depositThreshold frontWeight frontScale frontSpeedWeight "
+                          "frontSpeedScale frontSpeedWindow }, design { sobol morrisTrajectories "
                           "morrisLevels seed }, refinement { starts evaluations step tolerance }, exploration { points rounds margin }, acceptance { "
-                          "runoutTolerance minJaccard })",
+                          "runoutTolerance minJaccard frontTolerance frontSpeedTolerance })",
             in && *in->name ? " in " : "", in && *in->name ? in->name : "");
     gf_dict_free(D);
 }
@@ -316,6 +273,10 @@ typedef struct observation {
     double *deposit;          /* NULL: not observed */
     size_t npath;
     double *path;             /* the case's path (xy) */
+    size_t nfront;            /* observed front points (0: none) */
+    double *ft, *fs, *fv;     /* their times [s], positions along the path [m], speeds [m/s] (NAN: none) */
+    size_t nspeed;            /* the points with a speed */
+    double *cs, *cl;          /* every DEM cell's s and l along the path (with a front) */
 } observation;
 
 /* the value of a one-word entry of a case dictionary (NULL when absent) */
@@ -336,6 +297,86 @@ static void crs_check(const char *what, const char *file, const char *wkt, const
     if (same == 0) die("observations/%s %s: its CRS is not the DEM's (%s): reproject it to the DEM's CRS", what, file, dem);
     if (same < 0 && *wkt && *o->dem.wkt)
         die("observations/%s %s: its CRS is not understood (GDAL), the DEM's is", what, file);
+}
+
+/* the observed front: a CSV file with the header time,x,y or
+ * time,x,y,speed (an empty speed: none at that time), one row per
+ * observation, the points in the DEM's coordinates; each point's position
+ * along the case's path (pf); and every DEM cell's s and l, for the
+ * simulated front (gf_front_position) */
+static void read_front(const char *casedir, const config *c, observation *o, const char *pf)
+{
+    char *f = c->front[0] == '/' ? strdup(c->front) : cat(casedir, c->front);
+    FILE *in = fopen(f, "r");
+    if (!in) die("observations/front %s: cannot open it (%s)", f, strerror(errno));
+    char line[1024];
+    if (!fgets(line, sizeof line, in)) die("observations/front %s: empty (expected the header time,x,y[,speed])", f);
+    line[strcspn(line, "\r\n")] = '\0';
+    int has_speed = 0;
+    if (strcmp(line, "time,x,y,speed") == 0)
+        has_speed = 1;
+    else if (strcmp(line, "time,x,y") != 0)
+        die("observations/front %s: header '%s': expected time,x,y or time,x,y,speed (time in s from the release, x "
+            "and y in the DEM's coordinates, speed in m/s)", f, line);
+    size_t cap = 0, row = 1;
+    while (fgets(line, sizeof line, in)) {
+        ++row;
+        line[strcspn(line, "\r\n")] = '\0';
+        if (!line[0]) continue;
+        char *field[5] = {0};
+        int nf = 0;
+        for (char *p = line; nf < 5;) {
+            field[nf++] = p;
+            char *comma = strchr(p, ',');
+            if (!comma) break;
+            *comma = '\0';
+            p = comma + 1;
+        }
+        if (nf != 3 + has_speed)
+            die("observations/front %s, line %zu: %d fields, expected %d (%s)", f, row, nf, 3 + has_speed,
+                has_speed ? "time,x,y,speed" : "time,x,y");
+        double v[4] = {NAN, NAN, NAN, NAN};
+        for (int j = 0; j < nf; ++j) {
+            if (j == 3 && !field[j][0]) continue; /* no speed at this time */
+            if (!gf_parse_number(field[j], &v[j]) || !isfinite(v[j]))
+                die("observations/front %s, line %zu: '%s' is not a number", f, row, field[j]);
+        }
+        if (v[0] < 0) die("observations/front %s, line %zu: time %g s: allowed >= 0 (from the release)", f, row, v[0]);
+        if (!isnan(v[3]) && v[3] < 0) die("observations/front %s, line %zu: speed %g m/s: allowed >= 0", f, row, v[3]);
+        if (!gf_raster_covers(&o->dem, v[1], v[2]))
+            die("observations/front %s, line %zu: (%.1f, %.1f) lies outside the DEM", f, row, v[1], v[2]);
+        double sp, l;
+        gf_path_locate(o->npath, o->path, v[1], v[2], &sp, &l);
+        if (fabs(l) > HALF_WIDTH)
+            die("observations/front %s, line %zu: (%.1f, %.1f) lies %.0f m from the path %s (at most %.0f m: the "
+                "path analysis's half width)", f, row, v[1], v[2], fabs(l), pf, HALF_WIDTH);
+        if (o->nfront == cap) {
+            cap = cap ? 2 * cap : 16;
+            o->ft = realloc(o->ft, cap * sizeof *o->ft);
+            o->fs = realloc(o->fs, cap * sizeof *o->fs);
+            o->fv = realloc(o->fv, cap * sizeof *o->fv);
+            if (!o->ft || !o->fs || !o->fv) die("out of memory");
+        }
+        o->ft[o->nfront] = v[0], o->fs[o->nfront] = sp, o->fv[o->nfront] = v[3];
+        o->nspeed += !isnan(v[3]);
+        ++o->nfront;
+    }
+    fclose(in);
+    if (o->nfront == 0) die("observations/front %s: no observation after the header", f);
+    const size_t n = (size_t)o->dem.nx * (size_t)o->dem.ny;
+    o->cs = malloc(n * sizeof *o->cs);
+    o->cl = malloc(n * sizeof *o->cl);
+    if (!o->cs || !o->cl) die("out of memory");
+    for (int r = 0; r < o->dem.ny; ++r)
+        for (int q = 0; q < o->dem.nx; ++q) {
+            double x, y;
+            const size_t i = (size_t)r * (size_t)o->dem.nx + (size_t)q;
+            gf_raster_centre(&o->dem, q, r, &x, &y);
+            gf_path_locate(o->npath, o->path, x, y, &o->cs[i], &o->cl[i]);
+        }
+    printf("observed front %s: %zu positions (%zu with a speed), %.1f to %.1f s\n", c->front, o->nfront, o->nspeed,
+           o->ft[0], o->ft[o->nfront - 1]);
+    free(f);
 }
 
 static void read_observation(const char *casedir, const config *c, observation *o)
@@ -378,10 +419,10 @@ static void read_observation(const char *casedir, const config *c, observation *
         printf("observed outline %s: %zu pixels, %.0f m2\n", c->outline, inside, (double)inside * o->cell_area);
         free(f);
     }
-    if (c->runout_point || !isnan(c->runout_s)) {
+    if (c->runout_point || !isnan(c->runout_s) || c->front) {
         char *pf = cat(casedir, "Inputs/LINES/path_aimec.shp");
         if (!exists(pf))
-            die("observations: a runout needs the case's path %s (the runout is measured along it)", pf);
+            die("observations: a runout or a front needs the case's path %s (measured along it)", pf);
         if (gf_path_read(pf, &o->npath, &o->path)) die("path %s: %s", pf, gf_error_detail());
         if (c->runout_point) {
             char *f = c->runout_point[0] == '/' ? strdup(c->runout_point) : cat(casedir, c->runout_point);
@@ -399,10 +440,11 @@ static void read_observation(const char *casedir, const config *c, observation *
             printf("observed runout point %s: s = %.1f m along the path (%.1f m %s of it)\n", c->runout_point,
                    o->s_runout, fabs(l), l > 0 ? "left" : "right");
             free(f);
-        } else {
+        } else if (!isnan(c->runout_s)) {
             o->s_runout = c->runout_s;
             printf("observed runout: s = %.1f m along the path\n", o->s_runout);
         }
+        if (c->front) read_front(casedir, c, o, pf);
         free(pf);
     }
     if (c->deposit) {
@@ -476,7 +518,7 @@ static int score(calib *k, const char *m, gf_calib_eval *e, char *why, size_t ws
     const config *c = k->c;
     const observation *o = k->o;
     const size_t n = (size_t)o->dem.nx * (size_t)o->dem.ny;
-    e->scores = (gf_scores){NAN, NAN, NAN, NAN};
+    e->scores = (gf_scores){NAN, NAN, NAN, NAN, NAN};
     e->jaccard = NAN;
     char *ppr = cat(m, "postProcessing/hazardMaps/pressurePeak.tif");
     gf_raster r;
@@ -532,6 +574,44 @@ static int score(calib *k, const char *m, gf_calib_eval *e, char *why, size_t ws
         gf_raster_free(&t);
         e->scores.rmse = rmse;
     }
+    if (o->nfront) {
+        char *at = cat(m, "postProcessing/hazardMaps/arrivalTime.tif");
+        gf_raster a;
+        if (gf_raster_read(at, &a)) {
+            snprintf(why, wsize, "no arrival-time raster (%s; controlDict peakFields yes)", gf_error_detail());
+            free(at);
+            return -1;
+        }
+        free(at);
+        if (!gf_raster_same_grid(&a, &o->dem)) {
+            gf_raster_free(&a);
+            snprintf(why, wsize, "its arrival-time raster is not on the DEM's grid");
+            return -1;
+        }
+        double *sim = malloc(2 * o->nfront * sizeof *sim), *obs = sim ? sim + o->nfront : NULL;
+        size_t nv = 0;
+        int st = sim ? 0 : -1;
+        for (size_t i = 0; i < o->nfront && !st; ++i) {
+            if (gf_front_position(n, a.z, o->cs, o->cl, HALF_WIDTH, o->ft[i], &sim[i])) st = -1;
+            else if (isnan(sim[i])) {
+                snprintf(why, wsize, "front: no cell reached by %g s", o->ft[i]);
+                st = -2;
+            }
+        }
+        if (!st && gf_score_series_rmse(o->nfront, sim, o->fs, &e->scores.series_rmse)) st = -1;
+        for (size_t i = 0; i < o->nfront && !st; ++i) {
+            if (isnan(o->fv[i])) continue;
+            if (gf_front_speed(n, a.z, o->cs, o->cl, HALF_WIDTH, o->ft[i], c->front_window, &sim[nv])) st = -1;
+            obs[nv++] = o->fv[i];
+        }
+        if (!st && nv && gf_score_series_rmse(nv, sim, obs, &e->scores.speed_rmse)) st = -1;
+        gf_raster_free(&a);
+        free(sim);
+        if (st) {
+            if (st == -1) snprintf(why, wsize, "front score: %s", gf_error_detail());
+            return -1;
+        }
+    }
     if (gf_loss(&e->scores, &c->w, &e->loss)) {
         snprintf(why, wsize, "loss: %s", gf_error_detail());
         return -1;
@@ -540,26 +620,33 @@ static int score(calib *k, const char *m, gf_calib_eval *e, char *why, size_t ws
     return 0;
 }
 
-/* the result file of a member: "u_1 .. u_d ok loss runout tversky rmse jaccard" */
+/* the result file of a member: "u_1 .. u_d ok loss runout tversky rmse
+ * jaccard front speed" (an earlier version's file without the front's two
+ * values is read as not observed) */
 static int read_result(const char *m, const double *u, size_t d, gf_calib_eval *e)
 {
     char *f = cat(m, "result");
     FILE *in = fopen(f, "r");
     free(f);
     if (!in) return 0;
-    double v[MAXP + 6];
+    double v[MAXP + 8];
     int ok = 1;
-    for (size_t j = 0; j < d + 6 && ok; ++j) {
+    size_t got = 0;
+    for (size_t j = 0; j < d + 8 && ok; ++j) {
         char t[64];
-        ok = fscanf(in, "%63s", t) == 1 && (gf_parse_number(t, &v[j]) || (strcmp(t, "nan") == 0 && (v[j] = NAN, 1)));
+        const int r = fscanf(in, "%63s", t);
+        if (r != 1 && j == d + 6) break; /* the earlier format */
+        ok = r == 1 && (gf_parse_number(t, &v[j]) || (strcmp(t, "nan") == 0 && (v[j] = NAN, 1)));
+        got += ok;
     }
     fclose(in);
-    if (!ok) return 0;
+    if (!ok || got < d + 6) return 0;
+    if (got < d + 8) v[d + 6] = v[d + 7] = NAN;
     for (size_t j = 0; j < d; ++j)
         if (fabs(v[j] - u[j]) > 1e-12) return 0; /* another point: run it */
     e->ok = v[d] == 1;
     e->loss = v[d + 1];
-    e->scores = (gf_scores){v[d + 2], v[d + 3], v[d + 4], NAN};
+    e->scores = (gf_scores){v[d + 2], v[d + 3], v[d + 4], v[d + 6], v[d + 7]};
     e->jaccard = v[d + 5];
     return 1;
 }
@@ -570,8 +657,8 @@ static void write_result(const char *m, const double *u, size_t d, const gf_cali
     FILE *out = fopen(f, "w");
     if (!out) die("%s: cannot write", f);
     for (size_t j = 0; j < d; ++j) fprintf(out, "%.17g ", u[j]);
-    fprintf(out, "%d %.17g %.17g %.17g %.17g %.17g\n", e->ok, e->loss, e->scores.runout_error, e->scores.tversky,
-            e->scores.rmse, e->jaccard);
+    fprintf(out, "%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", e->ok, e->loss, e->scores.runout_error,
+            e->scores.tversky, e->scores.rmse, e->jaccard, e->scores.series_rmse, e->scores.speed_rmse);
     fclose(out);
     free(f);
 }
@@ -620,7 +707,10 @@ static int meets(const calib *k, const gf_calib_eval *e)
     if (!e->ok) return 0;
     if (k->o->mask && !(e->jaccard >= c->min_jaccard)) return 0;
     if (!isnan(k->o->s_runout) && !(fabs(e->scores.runout_error) <= c->runout_tol)) return 0;
-    if (!k->o->mask && isnan(k->o->s_runout) && !(e->loss <= 1)) return 0; /* the deposit alone: within its scale */
+    if (k->o->nfront && !(e->scores.series_rmse <= c->front_tol)) return 0;
+    if (k->o->nspeed && !(e->scores.speed_rmse <= c->speed_tol)) return 0;
+    if (!k->o->mask && isnan(k->o->s_runout) && !k->o->nfront && !(e->loss <= 1))
+        return 0; /* the deposit alone: within its scale */
     return 1;
 }
 
@@ -637,7 +727,7 @@ static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf
         const int bad = make_member(k, m, x, why, sizeof why);
         int ok = 0;
         if (!bad && gf_workers_run(k->pool, m, &ok, why, sizeof why)) die("%s", gf_error_detail());
-        *e = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN}, NAN, 0};
+        *e = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN, NAN}, NAN, 0};
         if (ok && score(k, m, e, why, sizeof why) != 0) e->ok = 0;
         gf_remove_times(m); /* keep the logs, rasters and tables; the fields go */
         write_result(m, u, d, e);
@@ -665,6 +755,8 @@ static gf_status evaluate(size_t index, const double *u, size_t d, void *ctx, gf
         if (!isnan(e->scores.runout_error)) printf(", runout %+.1f m", e->scores.runout_error);
         if (!isnan(e->jaccard)) printf(", Jaccard %.3f", e->jaccard);
         if (!isnan(e->scores.rmse)) printf(", deposit RMSE %.3f m", e->scores.rmse);
+        if (!isnan(e->scores.series_rmse)) printf(", front RMSE %.1f m", e->scores.series_rmse);
+        if (!isnan(e->scores.speed_rmse)) printf(", front speed RMSE %.2f m/s", e->scores.speed_rmse);
     } else {
         char *f = cat(m, "failure");
         FILE *in = fopen(f, "r");
@@ -784,9 +876,85 @@ static void write_outline_shp(const char *path, const gf_raster *grid, const uns
     GDALClose(r);
 }
 
+/* -observe's front.csv: the run's front (gf_front_position on its
+ * arrival-time map) at the times given ("T1 T2 ...") or at 6 times evenly
+ * spread over the front's travel, the point the furthest reached cell's
+ * centre, the speed the central difference over 2 s */
+static void observe_front(const char *run, const char *out, const char *times)
+{
+    char *at = cat(run, "postProcessing/hazardMaps/arrivalTime.tif");
+    gf_raster a;
+    if (gf_raster_read(at, &a)) {
+        if (times) die("-frontTimes: %s: %s (a run with peakFields yes)", at, gf_error_detail());
+        printf("front: no arrival-time raster %s: no front.csv\n", at);
+        free(at);
+        return;
+    }
+    char *pf = cat(run, "Inputs/LINES/path_aimec.shp");
+    size_t np;
+    double *xy;
+    if (gf_path_read(pf, &np, &xy)) die("%s: %s", pf, gf_error_detail());
+    const size_t n = (size_t)a.nx * (size_t)a.ny;
+    double *cs = malloc(n * sizeof *cs), *cl = malloc(n * sizeof *cl), tmax = 0;
+    if (!cs || !cl) die("out of memory");
+    for (int r = 0; r < a.ny; ++r)
+        for (int q = 0; q < a.nx; ++q) {
+            double x, y;
+            const size_t i = (size_t)r * (size_t)a.nx + (size_t)q;
+            gf_raster_centre(&a, q, r, &x, &y);
+            gf_path_locate(np, xy, x, y, &cs[i], &cl[i]);
+            if (isfinite(a.z[i]) && fabs(cl[i]) <= HALF_WIDTH) tmax = fmax(tmax, a.z[i]);
+        }
+    double t[64];
+    size_t nt = 0;
+    if (times) {
+        char *copy = strdup(times), *save = NULL;
+        for (char *w = strtok_r(copy, " ,", &save); w; w = strtok_r(NULL, " ,", &save)) {
+            if (nt == 64) die("-frontTimes: at most 64 times");
+            if (!gf_parse_number(w, &t[nt]) || !(t[nt] >= 0 && t[nt] <= 1e6)) die("-frontTimes: '%s': seconds in [0, 1e6]", w);
+            ++nt;
+        }
+        free(copy);
+        if (!nt) die("-frontTimes '%s': no time", times);
+    } else {
+        /* the time the front has done 99 % of its travel along the path,
+         * split in 6 (the last of them at that time) */
+        double s0, s1, t99 = tmax;
+        if (gf_front_position(n, a.z, cs, cl, HALF_WIDTH, 0, &s0) ||
+            gf_front_position(n, a.z, cs, cl, HALF_WIDTH, tmax, &s1))
+            die("front: %s", gf_error_detail());
+        if (isnan(s0) || isnan(s1)) die("front: %s has no arrival at 0 s within %g m of the path", at, HALF_WIDTH);
+        for (size_t i = 0; i < n; ++i)
+            if (isfinite(a.z[i]) && fabs(cl[i]) <= HALF_WIDTH && cs[i] >= s0 + 0.99 * (s1 - s0)) t99 = fmin(t99, a.z[i]);
+        for (nt = 0; nt < 6; ++nt) t[nt] = round(10.0 * (double)(nt + 1) * t99 / 6.0) / 10.0;
+    }
+    char *csv = cat(out, "front.csv");
+    FILE *f = fopen(csv, "w");
+    if (!f) die("%s: cannot write", csv);
+    fprintf(f, "time,x,y,speed\n");
+    for (size_t k = 0; k < nt; ++k) {
+        double sf, v;
+        if (gf_front_position(n, a.z, cs, cl, HALF_WIDTH, t[k], &sf) ||
+            gf_front_speed(n, a.z, cs, cl, HALF_WIDTH, t[k], 2.0, &v))
+            die("front: %s", gf_error_detail());
+        if (isnan(sf)) die("front: nothing reached by %g s in %s", t[k], at);
+        size_t best = n;
+        for (size_t i = 0; i < n && best == n; ++i)
+            if (isfinite(a.z[i]) && a.z[i] <= t[k] && fabs(cl[i]) <= HALF_WIDTH && cs[i] == sf) best = i;
+        double x, y;
+        gf_raster_centre(&a, (int)(best % (size_t)a.nx), (int)(best / (size_t)a.nx), &x, &y);
+        fprintf(f, "%.10g,%.3f,%.3f,%.4f\n", t[k], x, y, v);
+    }
+    fclose(f);
+    printf("front %s: %zu positions and speeds along the path, %g to %g s (the last arrival within %g m of the path at "
+           "%.1f s)\n", csv, nt, t[0], t[nt - 1], HALF_WIDTH, tmax);
+    gf_raster_free(&a);
+    free(at), free(pf), free(xy), free(cs), free(cl), free(csv);
+}
+
 static int observe(int argc, char **argv)
 {
-    const char *run = NULL, *out = NULL;
+    const char *run = NULL, *out = NULL, *front_times = NULL;
     double threshold = 1, shift = 0, rshift = 0;
     for (int i = 2; i < argc; ++i) {
         if (strcmp(argv[i], "-threshold") == 0 && i + 1 < argc) {
@@ -794,6 +962,8 @@ static int observe(int argc, char **argv)
         } else if (strcmp(argv[i], "-shift") == 0 && i + 1 < argc) {
             if (!gf_parse_number(argv[++i], &shift) || shift != floor(shift) || fabs(shift) > 1000)
                 die("-shift %s: a whole number of pixels in [-1000, 1000]", argv[i]);
+        } else if (strcmp(argv[i], "-frontTimes") == 0 && i + 1 < argc) {
+            front_times = argv[++i];
         } else if (strcmp(argv[i], "-runoutShift") == 0 && i + 1 < argc) {
             if (!gf_parse_number(argv[++i], &rshift) || fabs(rshift) > 1e5) die("-runoutShift %s: metres in [-1e5, 1e5]", argv[i]);
         } else if (!run) {
@@ -804,7 +974,9 @@ static int observe(int argc, char **argv)
             die("-observe: unexpected argument %s", argv[i]);
         }
     }
-    if (!run || !out) die("usage: gfCalibrate -observe RUN OUTDIR [-threshold KPA] [-shift CELLS] [-runoutShift M]");
+    if (!run || !out)
+        die("usage: gfCalibrate -observe RUN OUTDIR [-threshold KPA] [-shift CELLS] [-runoutShift M] [-frontTimes \"T1 "
+            "T2 ...\"]");
     GDALAllRegister();
     mkdir(out, 0755);
     char *ppr = cat(run, "postProcessing/hazardMaps/pressurePeak.tif");
@@ -862,6 +1034,7 @@ static int observe(int argc, char **argv)
         gf_raster_free(&t);
         free(dep);
     }
+    observe_front(run, out, front_times);
     gf_raster_free(&r);
     free(mask), free(ppr), free(shp), free(pa), free(pt), free(th);
     return 0;
@@ -985,7 +1158,7 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
     if (!f) die("%s: cannot write", csv);
     fprintf(f, "evaluation,phase,refinement");
     for (size_t j = 0; j < d; ++j) fprintf(f, ",%s", c->p[j].name);
-    fprintf(f, ",status,loss,runoutError_m,jaccard,tversky,depositRmse_m,member\n");
+    fprintf(f, ",status,loss,runoutError_m,jaccard,tversky,depositRmse_m,frontRmse_m,frontSpeedRmse_m_s,member\n");
     size_t nok = 0, nfail = 0, nused = 0, best = (size_t)-1;
     for (size_t i = 0; i < n; ++i) {
         char m[4096];
@@ -1000,8 +1173,9 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
         if (e->ok && (best == (size_t)-1 || e->loss < run->ev[best].loss)) best = i;
         fprintf(f, "%zu,%s,%d", i, phase_name(run->phase[i]), run->start[i]);
         for (size_t j = 0; j < d; ++j) fprintf(f, ",%.9g", value(&c->p[j], run->u[i * d + j]));
-        fprintf(f, ",%s,%.9g,%.9g,%.9g,%.9g,%.9g,evals/eval_%04zu\n", e->ok ? "ok" : "failed", e->loss,
-                e->scores.runout_error, e->jaccard, e->scores.tversky, e->scores.rmse, i);
+        fprintf(f, ",%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,evals/eval_%04zu\n", e->ok ? "ok" : "failed", e->loss,
+                e->scores.runout_error, e->jaccard, e->scores.tversky, e->scores.rmse, e->scores.series_rmse,
+                e->scores.speed_rmse, i);
     }
     fclose(f);
     if (best == (size_t)-1) die("every evaluation failed (their folders: %s)", k->evals);
@@ -1019,10 +1193,33 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
             ++m;
         }
     gf_reach_criteria crit = {NAN, k->o->mask ? c->min_jaccard : NAN, !isnan(k->o->s_runout) ? c->runout_tol : NAN};
-    if (!k->o->mask && isnan(k->o->s_runout)) crit.max_loss = 1; /* the deposit only: within one scale */
+    if (!k->o->mask && isnan(k->o->s_runout)) crit.max_loss = 1; /* the deposit (or front) only: within one scale */
     gf_reach_result verdict;
     if (gf_reach_verdict(m, loss, k->o->mask ? jac : NULL, isnan(k->o->s_runout) ? NULL : rerr, &crit, &verdict))
         die("verdict: %s", gf_error_detail());
+    if (k->o->nfront) {
+        /* the front's tolerances too (meets): the evaluations that meet
+         * every criterion, and the best front of them all */
+        size_t nmeet = 0, bf = idx[0];
+        for (size_t q = 0; q < m; ++q) {
+            nmeet += run->ev[idx[q]].accepted != 0;
+            if (run->ev[idx[q]].scores.series_rmse < run->ev[bf].scores.series_rmse) bf = idx[q];
+        }
+        const int others_met = verdict.verdict == GF_REACHABLE;
+        verdict.n_meeting = nmeet;
+        verdict.verdict = nmeet ? GF_REACHABLE : GF_UNREACHABLE;
+        if (nmeet)
+            snprintf(verdict.reason, sizeof verdict.reason, "reachable: %zu of %zu evaluations meet every criterion",
+                     nmeet, m);
+        else if (!others_met && run->ev[bf].scores.series_rmse <= c->front_tol &&
+                 !(run->ev[bf].scores.speed_rmse > c->speed_tol))
+            ; /* the front is met: the other criteria's reason stands */
+        else
+            snprintf(verdict.reason, sizeof verdict.reason,
+                     "unreachable: none of %zu evaluations meets every criterion; the best front (evaluation %zu): "
+                     "position RMSE %.1f m (tolerance %g m), speed RMSE %.2f m/s (tolerance %g m/s)",
+                     m, bf, run->ev[bf].scores.series_rmse, c->front_tol, run->ev[bf].scores.speed_rmse, c->speed_tol);
+    }
     int *accepted = calloc(n, sizeof *accepted);
     double lo[MAXP], hi[MAXP];
     size_t nacc = 0;
@@ -1052,20 +1249,24 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
     if (!have_em) snprintf(emwhy, sizeof emwhy, "%s", m < ncoef + 1 ? "too few evaluations" : gf_error_detail());
 
     /* Morris sensitivities of the loss, the runout error and the outline */
-    double mu_star[3 * MAXP], sigma[3 * MAXP], mu[3 * MAXP];
+    /* (and the front's position and speed RMSE when a front is observed) */
+    enum { NY = 5 };
+    double mu_star[NY * MAXP], sigma[NY * MAXP], mu[NY * MAXP];
     int have_morris = 0;
     if (run->n_morris) {
         const size_t r = run->n_morris / (d + 1);
-        double *y = malloc(run->n_morris * 3 * sizeof *y);
+        double *y = malloc(run->n_morris * NY * sizeof *y);
         int all_ok = 1;
         for (size_t i = 0; i < run->n_morris; ++i) {
             const gf_calib_eval *e = &run->ev[run->n_sobol + i];
             all_ok &= e->ok;
-            y[3 * i] = e->loss;
-            y[3 * i + 1] = isnan(e->scores.runout_error) ? 0 : e->scores.runout_error;
-            y[3 * i + 2] = isnan(e->jaccard) ? 0 : 1 - e->jaccard;
+            y[NY * i] = e->loss;
+            y[NY * i + 1] = isnan(e->scores.runout_error) ? 0 : e->scores.runout_error;
+            y[NY * i + 2] = isnan(e->jaccard) ? 0 : 1 - e->jaccard;
+            y[NY * i + 3] = isnan(e->scores.series_rmse) ? 0 : e->scores.series_rmse;
+            y[NY * i + 4] = isnan(e->scores.speed_rmse) ? 0 : e->scores.speed_rmse;
         }
-        have_morris = all_ok && gf_morris_effects(r, d, run->u + run->n_sobol * d, y, 3, mu, mu_star, sigma) == GF_SUCCESS;
+        have_morris = all_ok && gf_morris_effects(r, d, run->u + run->n_sobol * d, y, NY, mu, mu_star, sigma) == GF_SUCCESS;
         free(y);
     }
 
@@ -1158,6 +1359,8 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
         if (!isnan(b->scores.runout_error)) fprintf(o, ", runout error %+.1f m", b->scores.runout_error);
         if (!isnan(b->jaccard)) fprintf(o, ", Jaccard %.3f, Tversky %.3f", b->jaccard, b->scores.tversky);
         if (!isnan(b->scores.rmse)) fprintf(o, ", deposit RMSE %.3f m", b->scores.rmse);
+        if (!isnan(b->scores.series_rmse)) fprintf(o, ", front RMSE %.1f m", b->scores.series_rmse);
+        if (!isnan(b->scores.speed_rmse)) fprintf(o, ", front speed RMSE %.2f m/s", b->scores.speed_rmse);
         fprintf(o, "\n\n%-16s %12s %27s %25s %s\n", "parameter", "best", "reproduce the observation", "design range",
                 "constrained");
         for (size_t j = 0; j < d; ++j) {
@@ -1178,9 +1381,22 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
                                "observation: %s one with the other reproduces the event as well; the observation "
                                "constrains their combination, not each\n",
                             c->p[a2].name, c->p[b2].name, corr[a2 * d + b2], corr[a2 * d + b2] > 0 ? "raising" : "lowering");
-        fprintf(o, "(%zu evaluations reproduce the observation: Jaccard >= %g, |runout error| <= %g m; the range "
-                   "is theirs)\n",
-                nacc, c->min_jaccard, c->runout_tol);
+        {
+            char crit_text[512] = "";
+            size_t len = 0;
+            if (k->o->mask) len += (size_t)snprintf(crit_text + len, sizeof crit_text - len, ", Jaccard >= %g", c->min_jaccard);
+            if (!isnan(k->o->s_runout))
+                len += (size_t)snprintf(crit_text + len, sizeof crit_text - len, ", |runout error| <= %g m", c->runout_tol);
+            if (k->o->nfront)
+                len += (size_t)snprintf(crit_text + len, sizeof crit_text - len, ", front RMSE <= %g m", c->front_tol);
+            if (k->o->nspeed)
+                len += (size_t)snprintf(crit_text + len, sizeof crit_text - len, ", front speed RMSE <= %g m/s",
+                                        c->speed_tol);
+            if (!k->o->mask && isnan(k->o->s_runout) && !k->o->nfront)
+                len += (size_t)snprintf(crit_text + len, sizeof crit_text - len, ", loss <= 1");
+            fprintf(o, "(%zu evaluations reproduce the observation: %s; the range is theirs)\n", nacc,
+                    len > 2 ? crit_text + 2 : "");
+        }
         if (have_em) {
             fprintf(o, "\nemulator (quadratic, %zu evaluations nearest the best, R2 %.3f): curvatures", em.n_fit, em.r2);
             for (size_t kk = 0; kk < d; ++kk) fprintf(o, " %.4g", em.curvature[kk]);
@@ -1204,10 +1420,15 @@ static int analyse(calib *k, const gf_calib_run *run, double wall)
             fprintf(o, "\nemulator: not fitted (%s)\n", emwhy);
         }
         if (have_morris) {
-            fprintf(o, "\nsensitivity (Morris mu*, per unit of each range, %zu trajectories):\n%-16s %10s %14s %12s\n",
+            fprintf(o, "\nsensitivity (Morris mu*, per unit of each range, %zu trajectories):\n%-16s %10s %14s %12s",
                     run->n_morris / (d + 1), "parameter", "loss", "runout [m]", "1 - Jaccard");
-            for (size_t j = 0; j < d; ++j)
-                fprintf(o, "%-16s %10.4g %14.4g %12.4g\n", c->p[j].name, mu_star[j], mu_star[d + j], mu_star[2 * d + j]);
+            if (k->o->nfront) fprintf(o, " %14s %18s", "front RMSE [m]", "front speed [m/s]");
+            fprintf(o, "\n");
+            for (size_t j = 0; j < d; ++j) {
+                fprintf(o, "%-16s %10.4g %14.4g %12.4g", c->p[j].name, mu_star[j], mu_star[d + j], mu_star[2 * d + j]);
+                if (k->o->nfront) fprintf(o, " %14.4g %18.4g", mu_star[3 * d + j], mu_star[4 * d + j]);
+                fprintf(o, "\n");
+            }
         } else if (run->n_morris) {
             fprintf(o, "\nsensitivity: not computed (a Morris member failed)\n");
         }

@@ -371,7 +371,11 @@ std::vector<table> makeTables()
              "initial time step (read by OpenFOAM, checked by the solver)"},
             {"peakFields", "switch", "no", "", "", "",
              "write hPeak and speedPeak with every time and the centre of mass"
-             " (postProcessing/centreOfMass) for gfHazardMaps"},
+             " (postProcessing/centreOfMass) for gfHazardMaps; and tArrival, the time each face"
+             " first reached arrivalThickness (-1: never), for the arrival-time raster"},
+            {"arrivalThickness", "scalar", "0.01", "> 0", "m", "",
+             "peakFields: the thickness whose first reaching is a face's arrival time (tArrival, the"
+             " hazard maps' arrivalTime raster; gfCalibrate's front observations)"},
             {"hazardMaps", "switch", "no", "", "", "",
              "write the hazard maps (postProcessing/hazardMaps: the rasters, outline, maps, mass.csv and"
              " summary.dat of gfHazardMaps, the same files) at the end of the run, after its last time is"

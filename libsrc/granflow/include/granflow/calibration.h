@@ -130,13 +130,32 @@ gf_status gf_score_runout(double s_sim, double s_obs, double *err);
  *  array (GF_EINVAL), a non-finite value (GF_ENONFINITE). */
 gf_status gf_score_series_rmse(size_t n, const double *sim, const double *obs, double *rmse);
 
+/** The front's position along the path at time t from an arrival-time map
+ *  (theory section 2.6): the largest s of the n cells whose arrival time is
+ *  finite and <= t and whose distance from the path |l| <= half_width, with
+ *  s[i], l[i] the cell's coordinates along and across the path
+ *  (gf_path_locate).  *s_front = NAN when no cell had arrived by t.  Cells
+ *  with a NaN arrival (never reached, or off the mesh) are skipped.
+ *  Refused: n < 1 or a NULL array (GF_EINVAL); a non-finite t or
+ *  half_width <= 0 (GF_EDOM). */
+gf_status gf_front_position(size_t n, const double *arrival, const double *s, const double *l,
+                            double half_width, double t, double *s_front);
+
+/** The front's speed along the path at time t [m/s]: the central difference
+ *  (s_front(t + w) - s_front(t - w)) / 2w of gf_front_position, one-sided
+ *  from t = 0 when t < w.  *speed = NAN when either position is NAN.
+ *  Refused as gf_front_position, and w <= 0 or not finite (GF_EDOM). */
+gf_status gf_front_speed(size_t n, const double *arrival, const double *s, const double *l,
+                         double half_width, double t, double w, double *speed);
+
 /** The scores of one run; NAN for a score that is not observed (left out of
  *  the loss). */
 typedef struct gf_scores {
     double runout_error; /**< s_sim - s_obs [m] */
     double tversky;      /**< Tversky index of the outline, in [0, 1] */
     double rmse;         /**< deposit-thickness RMSE [m] */
-    double series_rmse;  /**< front position or speed RMSE [m or m/s] */
+    double series_rmse;  /**< front position RMSE [m] */
+    double speed_rmse;   /**< front speed RMSE [m/s] */
 } gf_scores;
 
 /** Weights and normalising scales of the loss. */
@@ -144,14 +163,16 @@ typedef struct gf_loss_weights {
     double runout, runout_scale; /**< weight; error scale [m] (e.g. the runout tolerance) */
     double outline;              /**< weight of 1 - Tversky */
     double rmse, rmse_scale;     /**< weight; thickness scale [m] */
-    double series, series_scale; /**< weight; position [m] or speed [m/s] scale */
+    double series, series_scale; /**< weight; front position scale [m] */
+    double speed, speed_scale;   /**< weight; front speed scale [m/s] */
 } gf_loss_weights;
 
 /** The weighted loss of normalised scores (theory section 2.5):
  *      L = sum_k w_k e_k / sum_k w_k
  *  over the scores that are observed (not NAN) and weighted (w_k > 0), with
  *  e_runout = |runout_error| / runout_scale, e_outline = 1 - tversky,
- *  e_rmse = rmse / rmse_scale, e_series = series_rmse / series_scale: 0 for
+ *  e_rmse = rmse / rmse_scale, e_series = series_rmse / series_scale,
+ *  e_speed = speed_rmse / speed_scale: 0 for
  *  a perfect match, 1 for an error of one scale or no overlap.  Refused:
  *  s/w/loss NULL (GF_EINVAL); a negative weight, a scale <= 0 or not finite
  *  of a weighted and observed term, tversky outside [0, 1], an RMSE < 0, no

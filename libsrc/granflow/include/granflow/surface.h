@@ -309,6 +309,13 @@ void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_
  * to entry map[f] (a caller that numbered its faces by
  * gf_surface_face_order passes that order); map NULL: entry f. */
 void gf_surface_update_peaks_mapped(const gf_surface *s, const int *map, double *h_peak, double *speed_peak);
+/* Arrival time, for front observations (radar, video): arrival[map[f]] = t
+ * for each owned face of the last step's active set whose thickness reaches
+ * h_min for the first time (arrival < 0: not reached yet; the caller fills
+ * the array with -1 at the start).  t is the time at the end of the step,
+ * so an arrival is late by at most one step.  map NULL: entry f. */
+void gf_surface_update_arrival_mapped(const gf_surface *s, const int *map, double t, double h_min,
+                                      double *arrival);
 
 /* First moments of the owned faces' volume for the centre of mass:
  * out[0] = sum A h, out[1..3] = sum A h x_f (face centres), over the active

@@ -72,7 +72,7 @@ static int stopped(shared *s)
 static gf_status evaluate(shared *s, size_t index)
 {
     gf_calib_run *run = s->run;
-    gf_calib_eval e = {0, NAN, {NAN, NAN, NAN, NAN}, NAN, 0};
+    gf_calib_eval e = {0, NAN, {NAN, NAN, NAN, NAN, NAN}, NAN, 0};
     const gf_status st = s->f(index, run->u + index * run->d, run->d, s->ctx, &e);
     if (st)
         return st;
@@ -227,7 +227,7 @@ gf_status gf_calibrate_run(const gf_calib_plan *plan, gf_calib_evaluate f, void 
     }
     const size_t explore0 = gf_calib_explore_index(plan, 0);
     for (size_t i = 0; i < n; ++i) {
-        run->ev[i] = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN}, NAN, 0};
+        run->ev[i] = (gf_calib_eval){0, NAN, {NAN, NAN, NAN, NAN, NAN}, NAN, 0};
         run->phase[i] = i < plan->n_sobol        ? GF_PHASE_SOBOL
                         : i < plan->n_sobol + nm ? GF_PHASE_MORRIS
                         : i < explore0           ? GF_PHASE_REFINE

@@ -113,6 +113,38 @@ gf_status gf_score_series_rmse(size_t n, const double *sim, const double *obs, d
     return GF_SUCCESS;
 }
 
+gf_status gf_front_position(size_t n, const double *arrival, const double *s, const double *l,
+                            double half_width, double t, double *s_front)
+{
+    if (n < 1 || !arrival || !s || !l || !s_front)
+        return gf_fail(GF_EINVAL, "front position: cells n = %zu must be >= 1 (and the arrays given)", n);
+    if (!isfinite(t) || !(isfinite(half_width) && half_width > 0))
+        return gf_fail(GF_EDOM, "front position: time %g must be finite, half width %g finite and > 0", t, half_width);
+    double best = NAN;
+    for (size_t i = 0; i < n; ++i)
+        if (isfinite(arrival[i]) && arrival[i] <= t && fabs(l[i]) <= half_width && !(s[i] <= best))
+            best = s[i];
+    *s_front = best;
+    return GF_SUCCESS;
+}
+
+gf_status gf_front_speed(size_t n, const double *arrival, const double *s, const double *l,
+                         double half_width, double t, double w, double *speed)
+{
+    if (!speed)
+        return gf_fail(GF_EINVAL, "front speed: speed must be given");
+    if (!(isfinite(w) && w > 0))
+        return gf_fail(GF_EDOM, "front speed: window %g s must be finite and > 0", w);
+    const double t0 = t - w > 0 ? t - w : 0, t1 = t + w;
+    double a, b;
+    gf_status st;
+    if ((st = gf_front_position(n, arrival, s, l, half_width, t0, &a)) ||
+        (st = gf_front_position(n, arrival, s, l, half_width, t1, &b)))
+        return st;
+    *speed = (b - a) / (t1 - t0);
+    return GF_SUCCESS;
+}
+
 /* one term of the loss: weight w >= 0, the error raw / scale (raw NAN: not
  * observed, the term is left out) */
 static gf_status loss_term(const char *name, double w, double scale, double raw, double *sw, double *swe)
@@ -138,13 +170,15 @@ gf_status gf_loss(const gf_scores *s, const gf_loss_weights *w, double *loss)
         return gf_fail(GF_EINVAL, "loss: scores, weights and loss must be given");
     if (!isnan(s->tversky) && !(s->tversky >= 0 && s->tversky <= 1))
         return gf_fail(GF_EDOM, "loss: Tversky index %g outside [0, 1]", s->tversky);
-    if (s->rmse < 0 || s->series_rmse < 0)
-        return gf_fail(GF_EDOM, "loss: an RMSE is negative (deposit %g, series %g)", s->rmse, s->series_rmse);
+    if (s->rmse < 0 || s->series_rmse < 0 || s->speed_rmse < 0)
+        return gf_fail(GF_EDOM, "loss: an RMSE is negative (deposit %g, front position %g, front speed %g)", s->rmse,
+                       s->series_rmse, s->speed_rmse);
     double sw = 0, swe = 0;
     if ((st = loss_term("the runout error", w->runout, w->runout_scale, fabs(s->runout_error), &sw, &swe)) ||
         (st = loss_term("the outline (1 - Tversky)", w->outline, 1.0, 1.0 - s->tversky, &sw, &swe)) ||
         (st = loss_term("the deposit RMSE", w->rmse, w->rmse_scale, s->rmse, &sw, &swe)) ||
-        (st = loss_term("the series RMSE", w->series, w->series_scale, s->series_rmse, &sw, &swe)))
+        (st = loss_term("the front position RMSE", w->series, w->series_scale, s->series_rmse, &sw, &swe)) ||
+        (st = loss_term("the front speed RMSE", w->speed, w->speed_scale, s->speed_rmse, &sw, &swe)))
         return st;
     if (sw == 0)
         return gf_fail(GF_EDOM, "loss: no score is both observed (not NAN) and weighted (weight > 0)");

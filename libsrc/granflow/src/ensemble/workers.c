@@ -46,17 +46,23 @@ static void free_argv(char **a)
 static gf_status spawn(gf_workers *p, size_t k)
 {
     worker *w = &p->w[k];
-    int in[2], out[2];
+    int in[2], out[2], st[2];
     if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, in) != 0) return gf_fail(GF_EIO, "worker %zu: socketpair: %s", k, strerror(errno));
     if (pipe2(out, O_CLOEXEC) != 0) {
         close(in[0]);
         close(in[1]);
         return gf_fail(GF_EIO, "worker %zu: pipe: %s", k, strerror(errno));
     }
+    /* the exec's status: closed by a successful exec (O_CLOEXEC, nothing
+     * read), the child's errno when the program cannot start */
+    if (pipe2(st, O_CLOEXEC) != 0) {
+        close(in[0]), close(in[1]), close(out[0]), close(out[1]);
+        return gf_fail(GF_EIO, "worker %zu: pipe: %s", k, strerror(errno));
+    }
     fflush(w->log);
     const pid_t pid = fork();
     if (pid < 0) {
-        close(in[0]), close(in[1]), close(out[0]), close(out[1]);
+        close(in[0]), close(in[1]), close(out[0]), close(out[1]), close(st[0]), close(st[1]);
         return gf_fail(GF_EIO, "worker %zu: fork: %s", k, strerror(errno));
     }
     if (pid == 0) {
@@ -66,11 +72,26 @@ static gf_status spawn(gf_workers *p, size_t k)
         dup2(fileno(w->log), STDERR_FILENO);
         shutdown(STDIN_FILENO, SHUT_WR);
         execvp(p->argv[0], p->argv);
-        fprintf(stderr, "cannot start %s: %s\n", p->argv[0], strerror(errno));
+        const int e = errno;
+        fprintf(stderr, "cannot start %s: %s\n", p->argv[0], strerror(e));
+        if (write(st[1], &e, sizeof e) < 0) { /* the parent sees no status: it reads the log */
+        }
         _exit(127);
     }
     close(in[1]);
     close(out[1]);
+    close(st[1]);
+    int e = 0;
+    ssize_t got;
+    while ((got = read(st[0], &e, sizeof e)) < 0 && errno == EINTR) {
+    }
+    close(st[0]);
+    if (got > 0) {
+        close(in[0]);
+        close(out[0]);
+        waitpid(pid, NULL, 0);
+        return gf_fail(GF_EIO, "worker %zu: cannot start %s: %s", k, p->argv[0], strerror(e));
+    }
     w->pid = pid;
     w->in = in[0];
     w->out = fdopen(out[0], "r");

@@ -674,6 +674,15 @@ void gf_surface_update_peaks_mapped(const gf_surface *s, const int *map, double 
     }
 }
 
+void gf_surface_update_arrival_mapped(const gf_surface *s, const int *map, double t, double h_min,
+                                      double *arrival)
+{
+    for (size_t i = 0; i < s->n_act_owned; ++i) {
+        const int f = s->act_f[i], p = map ? map[f] : f;
+        if (arrival[p] < 0 && s->h[f] >= h_min) arrival[p] = t;
+    }
+}
+
 void gf_surface_update_peaks(const gf_surface *s, double *h_peak, double *speed_peak)
 {
     gf_surface_update_peaks_mapped(s, NULL, h_peak, speed_peak);
