@@ -205,6 +205,24 @@ class GranflowAlgorithm(QgsProcessingAlgorithm):
             if out and out != 'TEMPORARY_OUTPUT':   # (a temporary folder is made new)
                 check_folder(os.path.abspath(out))
 
+    def check_batch(self, parameters, context, case):
+        """The checks of an algorithm that runs a batch of members on a case
+        (calibration, regional map): its OUTPUT folder (self.output_folder),
+        NP workers in [1, 256], the DICT file when given; the DICT path or
+        None."""
+        if self.has_value(parameters, 'OUTPUT') and self.parameterAsString(parameters, 'OUTPUT', context) \
+                != 'TEMPORARY_OUTPUT':
+            self.output_folder(parameters, context, case)
+        n = self.parameterAsInt(parameters, 'NP', context)
+        if not 1 <= n <= 256 or self.parameterAsDouble(parameters, 'NP', context) != n:
+            raise InputError('NP {}: workers, a whole number in [1, 256]'.format(parameters.get('NP')))
+        if not self.has_value(parameters, 'DICT'):
+            return None
+        d = self.parameterAsFile(parameters, 'DICT', context)
+        if not os.path.isfile(d):
+            raise InputError('DICT {}: no such file'.format(d))
+        return d
+
     def case_options(self, parameters, context, inputs):
         """gfRunCase's options for the parameters."""
         opts = ['-friction', self.enum_string(parameters, 'FRICTION'),

@@ -275,16 +275,8 @@ class Calibration(GranflowAlgorithm):
 
     def check(self, parameters, context):
         case = self.case_folder(parameters, context)
-        if self.has_value(parameters, 'OUTPUT') and self.parameterAsString(parameters, 'OUTPUT', context) \
-                != 'TEMPORARY_OUTPUT':
-            self.output_folder(parameters, context, case)
-        n = self.parameterAsInt(parameters, 'NP', context)
-        if not 1 <= n <= 256 or self.parameterAsDouble(parameters, 'NP', context) != n:
-            raise InputError('NP {}: workers, a whole number in [1, 256]'.format(parameters.get('NP')))
-        if self.has_value(parameters, 'DICT'):
-            d = self.parameterAsFile(parameters, 'DICT', context)
-            if not os.path.isfile(d):
-                raise InputError('DICT {}: no such file'.format(d))
+        d = self.check_batch(parameters, context, case)
+        if d:
             given = [k for k, _ in OBSERVATIONS if self.has_value(parameters, k)] + \
                 [k for k in ('RELEASE_RANGE',) if self.range_given(parameters, k)] + \
                 [k for k, *_ in NUMBERS if self.has_value(parameters, k)]

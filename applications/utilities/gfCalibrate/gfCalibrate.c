@@ -513,6 +513,29 @@ static double csv_value(const char *file, const char *col)
 }
 
 /* the scores of a member that ran (0), or -1 with the reason */
+/* a member's hazard-map raster NAME (postProcessing/hazardMaps/NAME.tif) on
+ * the DEM's grid into *r; -1 and the reason in why (what: its name in the
+ * message, hint: how to get it) */
+static int member_raster(const char *m, const char *name, const char *what, const char *hint,
+                         const observation *o, gf_raster *r, char *why, size_t wsize)
+{
+    char rel[256];
+    snprintf(rel, sizeof rel, "postProcessing/hazardMaps/%s.tif", name);
+    char *f = cat(m, rel);
+    const gf_status st = gf_raster_read(f, r);
+    free(f);
+    if (st) {
+        snprintf(why, wsize, "no %s raster (%s%s)", what, gf_error_detail(), hint);
+        return -1;
+    }
+    if (!gf_raster_same_grid(r, &o->dem)) {
+        gf_raster_free(r);
+        snprintf(why, wsize, "its %s raster is not on the DEM's grid", what);
+        return -1;
+    }
+    return 0;
+}
+
 static int score(calib *k, const char *m, gf_calib_eval *e, char *why, size_t wsize)
 {
     const config *c = k->c;
@@ -520,19 +543,8 @@ static int score(calib *k, const char *m, gf_calib_eval *e, char *why, size_t ws
     const size_t n = (size_t)o->dem.nx * (size_t)o->dem.ny;
     e->scores = (gf_scores){NAN, NAN, NAN, NAN, NAN};
     e->jaccard = NAN;
-    char *ppr = cat(m, "postProcessing/hazardMaps/pressurePeak.tif");
     gf_raster r;
-    if (gf_raster_read(ppr, &r)) {
-        snprintf(why, wsize, "no peak pressure raster (%s)", gf_error_detail());
-        free(ppr);
-        return -1;
-    }
-    free(ppr);
-    if (!gf_raster_same_grid(&r, &o->dem)) {
-        gf_raster_free(&r);
-        snprintf(why, wsize, "its peak pressure raster is not on the DEM's grid");
-        return -1;
-    }
+    if (member_raster(m, "pressurePeak", "peak pressure", "", o, &r, why, wsize)) return -1;
     if (o->mask) {
         gf_outline_score s;
         if (gf_score_outline(n, r.z, c->threshold, o->mask, o->valid, o->cell_area, c->alpha, c->beta, &s)) {
@@ -557,14 +569,8 @@ static int score(calib *k, const char *m, gf_calib_eval *e, char *why, size_t ws
         gf_score_runout(s, o->s_runout, &e->scores.runout_error);
     }
     if (o->deposit) {
-        char *th = cat(m, "postProcessing/hazardMaps/thickness.tif");
         gf_raster t;
-        if (gf_raster_read(th, &t)) {
-            snprintf(why, wsize, "no thickness raster (%s)", gf_error_detail());
-            free(th);
-            return -1;
-        }
-        free(th);
+        if (member_raster(m, "thickness", "thickness", "", o, &t, why, wsize)) return -1;
         double rmse = NAN;
         if (gf_score_deposit_rmse(n, t.z, o->deposit, o->valid, c->deposit_threshold, GF_RMSE_UNION, &rmse, NULL)) {
             snprintf(why, wsize, "deposit score: %s", gf_error_detail());
@@ -575,19 +581,9 @@ static int score(calib *k, const char *m, gf_calib_eval *e, char *why, size_t ws
         e->scores.rmse = rmse;
     }
     if (o->nfront) {
-        char *at = cat(m, "postProcessing/hazardMaps/arrivalTime.tif");
         gf_raster a;
-        if (gf_raster_read(at, &a)) {
-            snprintf(why, wsize, "no arrival-time raster (%s; controlDict peakFields yes)", gf_error_detail());
-            free(at);
+        if (member_raster(m, "arrivalTime", "arrival-time", "; controlDict peakFields yes", o, &a, why, wsize))
             return -1;
-        }
-        free(at);
-        if (!gf_raster_same_grid(&a, &o->dem)) {
-            gf_raster_free(&a);
-            snprintf(why, wsize, "its arrival-time raster is not on the DEM's grid");
-            return -1;
-        }
         double *sim = malloc(2 * o->nfront * sizeof *sim), *obs = sim ? sim + o->nfront : NULL;
         size_t nv = 0;
         int st = sim ? 0 : -1;

@@ -664,6 +664,32 @@ static void write_tif(const char *dir, const char *name, const gf_raster *grid, 
     free(f), free(tmp);
 }
 
+/* the merge's count.tif (releases reaching each cell), releaseId.tif (the
+ * release of the cell's largest peak pressure) and zones.tif (the pressure
+ * zone of the merged peak pressure mx), on grid */
+static void write_counts(const char *outdir, const gf_raster *grid, size_t nc, const double *mx,
+                         const unsigned *count, const long *who, const config *c)
+{
+    double *a = calloc(nc ? nc : 1, sizeof *a);
+    if (!a) die("out of memory");
+    for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) ? NAN : (double)count[q];
+    write_tif(outdir, "count.tif", grid, a);
+    for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) || !(mx[q] > 0) ? NAN : (double)who[q];
+    write_tif(outdir, "releaseId.tif", grid, a);
+    for (size_t q = 0; q < nc; ++q) {
+        if (isnan(mx[q])) {
+            a[q] = NAN;
+            continue;
+        }
+        size_t z = 0;
+        while (z < c->n_zones && mx[q] > c->zones[z]) ++z;
+        a[q] = (double)z;
+    }
+    write_tif(outdir, "zones.tif", grid, a);
+    free(a);
+}
+
+
 /* the scenario's merged maps; the members merged */
 static size_t merge(const job *j, size_t s, char *outdir)
 {
@@ -704,25 +730,7 @@ static size_t merge(const job *j, size_t s, char *outdir)
         char name[64];
         snprintf(name, sizeof name, "%sMax.tif", field[fi]);
         write_tif(outdir, name, &r[0], mx);
-        if (fi == 0) {
-            double *a = malloc(nc * sizeof *a);
-            if (!a) die("out of memory");
-            for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) ? NAN : (double)count[q];
-            write_tif(outdir, "count.tif", &r[0], a);
-            for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) || !(mx[q] > 0) ? NAN : (double)who[q];
-            write_tif(outdir, "releaseId.tif", &r[0], a);
-            for (size_t q = 0; q < nc; ++q) {
-                if (isnan(mx[q])) {
-                    a[q] = NAN;
-                    continue;
-                }
-                size_t z = 0;
-                while (z < c->n_zones && mx[q] > c->zones[z]) ++z;
-                a[q] = (double)z;
-            }
-            write_tif(outdir, "zones.tif", &r[0], a);
-            free(a);
-        }
+        if (fi == 0) write_counts(outdir, &r[0], nc, mx, count, who, c);
         free(mx), free(count), free(who);
         for (size_t q = 0; q < n; ++q) gf_raster_free(&r[q]);
         free(r), free(v), free(ids);
@@ -1395,25 +1403,7 @@ static size_t merge_clipped(const job *j, size_t s, char *outdir)
         char name[64];
         snprintf(name, sizeof name, "%sMax.tif", field[fi]);
         write_tif(outdir, name, &grid, mx);
-        if (fi == 0) {
-            double *a = malloc(nc * sizeof *a);
-            if (!a) die("out of memory");
-            for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) ? NAN : (double)count[q];
-            write_tif(outdir, "count.tif", &grid, a);
-            for (size_t q = 0; q < nc; ++q) a[q] = isnan(mx[q]) || !(mx[q] > 0) ? NAN : (double)who[q];
-            write_tif(outdir, "releaseId.tif", &grid, a);
-            for (size_t q = 0; q < nc; ++q) {
-                if (isnan(mx[q])) {
-                    a[q] = NAN;
-                    continue;
-                }
-                size_t z = 0;
-                while (z < c->n_zones && mx[q] > c->zones[z]) ++z;
-                a[q] = (double)z;
-            }
-            write_tif(outdir, "zones.tif", &grid, a);
-            free(a);
-        }
+        if (fi == 0) write_counts(outdir, &grid, nc, mx, count, who, c);
         free(mx), free(count), free(who);
     }
     return n;
