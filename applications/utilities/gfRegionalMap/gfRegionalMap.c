@@ -1448,7 +1448,7 @@ static void submit(const job *j, const char *dp, const char *casedir, long np, l
     sh_word(o, dp), fprintf(o, " -out "), sh_word(o, j->dir), fprintf(o, " "), sh_word(o, casedir), fprintf(o, "\n");
     if (fclose(o)) die("cannot write %s", col);
     chmod(arr, 0755), chmod(col, 0755);
-    char range[64], outa[4200], outc[4200], dep[128];
+    char range[64], outa[4200], outc[4200], dep[160];   /* "--dependency=afterany:" and a job id of up to 127 characters */
     snprintf(range, sizeof range, "--array=1-%ld", ntasks);
     snprintf(outa, sizeof outa, "--output=%s/task_%%a.out", sd);
     snprintf(outc, sizeof outc, "--output=%s/collect.out", sd);
