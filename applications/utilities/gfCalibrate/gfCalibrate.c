@@ -299,6 +299,23 @@ static void crs_check(const char *what, const char *file, const char *wkt, const
         die("observations/%s %s: its CRS is not understood (GDAL), the DEM's is", what, file);
 }
 
+/* every cell centre's coordinates along (*s) and across (*l) the path of np
+ * points xy (gf_path_locate), arrays of the grid's size */
+static void cell_path_coords(const gf_raster *g, size_t np, const double *xy, double **s, double **l)
+{
+    const size_t n = (size_t)g->nx * (size_t)g->ny;
+    *s = malloc(n * sizeof **s);
+    *l = malloc(n * sizeof **l);
+    if (!*s || !*l) die("out of memory");
+    for (int r = 0; r < g->ny; ++r)
+        for (int q = 0; q < g->nx; ++q) {
+            double x, y;
+            const size_t i = (size_t)r * (size_t)g->nx + (size_t)q;
+            gf_raster_centre(g, q, r, &x, &y);
+            gf_path_locate(np, xy, x, y, &(*s)[i], &(*l)[i]);
+        }
+}
+
 /* the observed front: a CSV file with the header time,x,y or
  * time,x,y,speed (an empty speed: none at that time), one row per
  * observation, the points in the DEM's coordinates; each point's position
@@ -363,17 +380,7 @@ static void read_front(const char *casedir, const config *c, observation *o, con
     }
     fclose(in);
     if (o->nfront == 0) die("observations/front %s: no observation after the header", f);
-    const size_t n = (size_t)o->dem.nx * (size_t)o->dem.ny;
-    o->cs = malloc(n * sizeof *o->cs);
-    o->cl = malloc(n * sizeof *o->cl);
-    if (!o->cs || !o->cl) die("out of memory");
-    for (int r = 0; r < o->dem.ny; ++r)
-        for (int q = 0; q < o->dem.nx; ++q) {
-            double x, y;
-            const size_t i = (size_t)r * (size_t)o->dem.nx + (size_t)q;
-            gf_raster_centre(&o->dem, q, r, &x, &y);
-            gf_path_locate(o->npath, o->path, x, y, &o->cs[i], &o->cl[i]);
-        }
+    cell_path_coords(&o->dem, o->npath, o->path, &o->cs, &o->cl);
     printf("observed front %s: %zu positions (%zu with a speed), %.1f to %.1f s\n", c->front, o->nfront, o->nspeed,
            o->ft[0], o->ft[o->nfront - 1]);
     free(f);
@@ -891,16 +898,10 @@ static void observe_front(const char *run, const char *out, const char *times)
     double *xy;
     if (gf_path_read(pf, &np, &xy)) die("%s: %s", pf, gf_error_detail());
     const size_t n = (size_t)a.nx * (size_t)a.ny;
-    double *cs = malloc(n * sizeof *cs), *cl = malloc(n * sizeof *cl), tmax = 0;
-    if (!cs || !cl) die("out of memory");
-    for (int r = 0; r < a.ny; ++r)
-        for (int q = 0; q < a.nx; ++q) {
-            double x, y;
-            const size_t i = (size_t)r * (size_t)a.nx + (size_t)q;
-            gf_raster_centre(&a, q, r, &x, &y);
-            gf_path_locate(np, xy, x, y, &cs[i], &cl[i]);
-            if (isfinite(a.z[i]) && fabs(cl[i]) <= HALF_WIDTH) tmax = fmax(tmax, a.z[i]);
-        }
+    double *cs, *cl, tmax = 0;
+    cell_path_coords(&a, np, xy, &cs, &cl);
+    for (size_t i = 0; i < n; ++i)
+        if (isfinite(a.z[i]) && fabs(cl[i]) <= HALF_WIDTH) tmax = fmax(tmax, a.z[i]);
     double t[64];
     size_t nt = 0;
     if (times) {
