@@ -335,6 +335,74 @@ static void face_values_map_onto_the_dem_grid(void **state)
     }
 }
 
+/* The outlines of a class raster (the pressure zones of a regional map) in
+ * a GeoPackage: 4-connected groups by class, a ring keeping its hole, the
+ * limits and areas counted by hand; refusals */
+static void class_outlines_are_counted_by_hand(void **state)
+{
+    (void)state;
+    gf_raster dem;
+    assert_int_equal(gf_raster_read(small_dem(), &dem), GF_SUCCESS);
+    assert_int_equal(dem.nx, 6);
+    assert_int_equal(dem.ny, 5);
+    /* a ring of class 1 around a class-2 pixel, a lone class-1 pixel (only
+     * diagonal to the ring: another polygon), class 3 in a corner, class 2
+     * in another, NAN and an out-of-range 7 not drawn */
+    const double c[30] = {1, 1, 1, 0, 0, 3,   /* row 0 (north) */
+                          1, 2, 1, 0, 0, 0,   /* row 1 */
+                          1, 1, 1, 0, 0, 0,   /* row 2 */
+                          0, 0, 0, 1, 0, 7,   /* row 3 */
+                          NAN, 0, 0, 0, 0, 2}; /* row 4 */
+    const double lim[3] = {1, 10, 30};
+    size_t n = 0;
+    assert_int_equal(gf_class_outlines(tmp("zones.gpkg"), "zones", &dem, c, 3, lim, "kPa", &n), GF_SUCCESS);
+    assert_int_equal(n, 5);
+    GDALDatasetH ds = GDALOpenEx(tmp("zones.gpkg"), GDAL_OF_VECTOR, NULL, NULL, NULL);
+    assert_non_null(ds);
+    OGRLayerH L = GDALDatasetGetLayerByName(ds, "zones");
+    assert_non_null(L);
+    assert_int_equal((int)OGR_L_GetFeatureCount(L, TRUE), 5);
+    double area[4] = {0}, lower[4] = {0};
+    int pieces[4] = {0}, holes = 0, upper_set[4] = {0};
+    OGRFeatureH f;
+    while ((f = OGR_L_GetNextFeature(L)) != NULL) {
+        const int k = OGR_F_GetFieldAsInteger(f, OGR_F_GetFieldIndex(f, "class"));
+        assert_true(k >= 1 && k <= 3);
+        ++pieces[k];
+        const double a = OGR_F_GetFieldAsDouble(f, OGR_F_GetFieldIndex(f, "area_m2"));
+        assert_close(a, OGR_G_Area(OGR_F_GetGeometryRef(f)), 1e-9);
+        area[k] += a;
+        lower[k] = OGR_F_GetFieldAsDouble(f, OGR_F_GetFieldIndex(f, "lower_kPa"));
+        upper_set[k] = OGR_F_IsFieldSetAndNotNull(f, OGR_F_GetFieldIndex(f, "upper_kPa"));
+        if (k == 1 && a > 500) {
+            holes = OGR_G_GetGeometryCount(OGR_F_GetGeometryRef(f)) - 1;
+            assert_close(OGR_F_GetFieldAsDouble(f, OGR_F_GetFieldIndex(f, "upper_kPa")), 10, 0);
+        }
+        OGR_F_Destroy(f);
+    }
+    GDALClose(ds);
+    assert_int_equal(pieces[1], 2);
+    assert_int_equal(pieces[2], 2);
+    assert_int_equal(pieces[3], 1);
+    assert_close(area[1], 9 * 100.0, 1e-9); /* the ring's 8 pixels and the lone one, 10 m pixels */
+    assert_close(area[2], 2 * 100.0, 1e-9);
+    assert_close(area[3], 1 * 100.0, 1e-9);
+    assert_int_equal(holes, 1);
+    assert_close(lower[1], 1, 0);
+    assert_close(lower[2], 10, 0);
+    assert_close(lower[3], 30, 0);
+    assert_true(upper_set[1] && upper_set[2] && !upper_set[3]);
+    /* refusals */
+    const double bad[3] = {1, 10, 10};
+    assert_int_equal(gf_class_outlines(tmp("z.gpkg"), "zones", &dem, c, 3, bad, "kPa", NULL), GF_EINVAL);
+    assert_non_null(strstr(gf_error_detail(), "limit 3"));
+    assert_int_equal(gf_class_outlines(tmp("z.gpkg"), "zones", &dem, c, 0, lim, "kPa", NULL), GF_EINVAL);
+    assert_int_equal(gf_class_outlines(tmp("z.gpkg"), "zo nes", &dem, c, 3, lim, "kPa", NULL), GF_EINVAL);
+    assert_int_equal(gf_class_outlines("/nonexistent-dir/z.gpkg", "zones", &dem, c, 3, lim, "kPa", NULL), GF_EIO);
+    assert_non_null(strstr(gf_error_detail(), "/nonexistent-dir/z.gpkg"));
+    gf_raster_free(&dem);
+}
+
 /* The affected-area outline: pixels >= threshold, their area, the GeoJSON
  * polygons' areas summing to it; the PNG map has the DEM's size plus the
  * colour bar; a 3D line (the centre-of-mass path) as GeoJSON */
@@ -665,6 +733,7 @@ int main(void)
         cmocka_unit_test(mesh_grid_skips_nodata_and_follows_the_crop),
         cmocka_unit_test(face_values_map_onto_the_dem_grid),
         cmocka_unit_test(outline_and_map_are_written),
+        cmocka_unit_test(class_outlines_are_counted_by_hand),
         cmocka_unit_test(dam_on_flat_ground_has_the_crown_height_and_the_wall_slope),
         cmocka_unit_test(dam_on_sloping_ground_follows_the_crown_elevation),
         cmocka_unit_test(bad_dams_are_refused_with_the_reason),

@@ -154,6 +154,21 @@ gf_status gf_terrain_to_raster(const gf_raster *dem, const gf_terrain_grid *g, s
 gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
                             double threshold, double *area);
 
+/* The outlines of a class raster as a new GeoPackage (the file replaced),
+ * one layer `layer` in the grid's CRS (none when the grid has none): each
+ * 4-connected group of pixels of class k (cls a whole number 1..nclass;
+ * 0, NAN and other values not drawn) is a polygon (holes kept) with fields
+ * class (k), lower_UNIT = limits[k-1], upper_UNIT = limits[k] (empty for
+ * the last class; limits holds nclass values, increasing) and area_m2 (its
+ * area in the grid's CRS), UNIT the unit given (e.g. kPa); the number of
+ * polygons in *n (may be NULL).  Used for the pressure zones of a hazard
+ * indication map (gfRegionalMap).  Refused (GF_EINVAL): nclass 0, limits
+ * not increasing or not finite, a unit or layer name that is not a plain
+ * word (letters, digits, _); GF_EIO naming the file when GDAL cannot write
+ * it. */
+gf_status gf_class_outlines(const char *path, const char *layer, const gf_raster *grid, const double *cls,
+                            size_t nclass, const double *limits, const char *unit, size_t *n);
+
 /* A line (n >= 2 points, georeferenced x y z interleaved) as a GeoJSON
  * LineString feature, with a name and the numeric properties given
  * (keys[k] = values[k], nprops of them); reprojected to WGS 84 (RFC 7946)

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Real terrain through GDAL/OGR (see granflow/terrain.h): what is made from
  * rasters for the user: the outline of an area (GeoJSON polygons), a line as
- * GeoJSON, the probability raster of an ensemble and its contour lines (the
+ * GeoJSON, the outlines of classes (GeoPackage), the probability raster of an ensemble and its contour lines (the
  * maps themselves are drawn with GMT: gfReportMaps). */
 #include "granflow/terrain.h"
 #include "granflow/path_analysis.h"
@@ -140,6 +140,120 @@ gf_status gf_raster_outline(const char *path, const gf_raster *grid, const doubl
 done:
     close_band_and_layer(out, vmem, mem, srs);
     free(mask);
+    return st;
+}
+
+/*--------------------------------------------------------- class outlines --*/
+
+static int plain_word(const char *s)
+{
+    if (!s || !*s || strlen(s) > 48)
+        return 0;
+    for (; *s; ++s)
+        if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') || *s == '_'))
+            return 0;
+    return 1;
+}
+
+gf_status gf_class_outlines(const char *path, const char *layer, const gf_raster *grid, const double *cls,
+                            size_t nclass, const double *limits, const char *unit, size_t *n)
+{
+    gf_terrain_gdal_init();
+    if (!path || !grid || !cls || !limits)
+        return gf_fail(GF_EINVAL, "class outlines %s: a grid, its classes and the limits must be given",
+                       path ? path : "(no file)");
+    if (nclass == 0 || nclass > 1000)
+        return gf_fail(GF_EINVAL, "class outlines %s: %zu classes (allowed: 1 to 1000)", path, nclass);
+    for (size_t k = 0; k < nclass; ++k)
+        if (!isfinite(limits[k]) || (k > 0 && !(limits[k] > limits[k - 1])))
+            return gf_fail(GF_EINVAL, "class outlines %s: limit %zu (%g) must be finite and above the one before", path,
+                           k + 1, limits[k]);
+    if (!plain_word(layer) || !plain_word(unit))
+        return gf_fail(GF_EINVAL, "class outlines %s: layer '%s' and unit '%s' must be plain words (letters, digits, _)",
+                       path, layer ? layer : "", unit ? unit : "");
+    GDALDriverH gp = GDALGetDriverByName("GPKG");
+    if (!gp)
+        return gf_fail(GF_EIO, "class outlines %s: GDAL lacks the GPKG driver", path);
+    const size_t nc = (size_t)grid->nx * (size_t)grid->ny;
+    int *v = malloc(nc * sizeof *v);
+    if (!v)
+        return gf_fail(GF_ENOMEM, "class outlines %s: %zu cells", path, nc);
+    for (size_t i = 0; i < nc; ++i) {
+        const double c = cls[i];
+        v[i] = isfinite(c) && c >= 1 && c <= (double)nclass && c == floor(c) ? (int)c : 0;
+    }
+    GDALDatasetH mem = NULL, vmem = NULL, out = NULL;
+    GDALRasterBandH b = NULL;
+    OGRLayerH ml = NULL;
+    OGRSpatialReferenceH srs = NULL;
+    size_t count = 0;
+    gf_status st = band_and_layer("class outlines", path, grid, v, GDT_Int32, "classes", wkbPolygon, &mem, &b, &vmem,
+                                  &ml, &srs);
+    if (st)
+        goto done;
+    OGRFieldDefnH fd = OGR_Fld_Create("class", OFTInteger);
+    OGR_L_CreateField(ml, fd, TRUE);
+    OGR_Fld_Destroy(fd);
+    /* the band as its own mask: class 0 makes no polygon */
+    if (GDALPolygonize(b, b, ml, 0, NULL, NULL, NULL) != CE_None) {
+        st = gf_fail(GF_EIO, "class outlines %s: polygonize failed (%s)", path, gf_terrain_gdal_msg());
+        goto done;
+    }
+    unlink(path);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    out = GDALCreate(gp, path, 0, 0, 0, GDT_Unknown, NULL);
+    CPLPopErrorHandler();
+    OGRLayerH ol = out ? GDALDatasetCreateLayer(out, layer, srs, wkbPolygon, NULL) : NULL;
+    if (!ol) {
+        st = gf_fail(GF_EIO, "class outlines %s: GDAL cannot write it (%s)", path, gf_terrain_gdal_msg());
+        goto done;
+    }
+    char lo[64], hi[64];
+    snprintf(lo, sizeof lo, "lower_%s", unit);
+    snprintf(hi, sizeof hi, "upper_%s", unit);
+    const char *names[] = {"class", lo, hi, "area_m2"};
+    const OGRFieldType types[] = {OFTInteger, OFTReal, OFTReal, OFTReal};
+    for (int f = 0; f < 4; ++f) {
+        OGRFieldDefnH d = OGR_Fld_Create(names[f], types[f]);
+        const OGRErr e = OGR_L_CreateField(ol, d, TRUE);
+        OGR_Fld_Destroy(d);
+        if (e != OGRERR_NONE) {
+            st = gf_fail(GF_EIO, "class outlines %s: field %s (%s)", path, names[f], gf_terrain_gdal_msg());
+            goto done;
+        }
+    }
+    if (OGR_L_StartTransaction(ol) != OGRERR_NONE) {
+        st = gf_fail(GF_EIO, "class outlines %s: %s", path, gf_terrain_gdal_msg());
+        goto done;
+    }
+    OGR_L_ResetReading(ml);
+    OGRFeatureH f;
+    while ((f = OGR_L_GetNextFeature(ml)) != NULL) {
+        const int k = OGR_F_GetFieldAsInteger(f, 0);
+        OGRFeatureH g = OGR_F_Create(OGR_L_GetLayerDefn(ol));
+        OGRGeometryH geom = OGR_F_GetGeometryRef(f);
+        OGR_F_SetGeometry(g, geom);
+        OGR_F_SetFieldInteger(g, 0, k);
+        OGR_F_SetFieldDouble(g, 1, limits[k - 1]);
+        if ((size_t)k < nclass)
+            OGR_F_SetFieldDouble(g, 2, limits[k]);
+        OGR_F_SetFieldDouble(g, 3, OGR_G_Area(geom));
+        const OGRErr e = OGR_L_CreateFeature(ol, g);
+        OGR_F_Destroy(g);
+        OGR_F_Destroy(f);
+        if (e != OGRERR_NONE) {
+            st = gf_fail(GF_EIO, "class outlines %s: writing a polygon failed (%s)", path, gf_terrain_gdal_msg());
+            goto done;
+        }
+        ++count;
+    }
+    if (OGR_L_CommitTransaction(ol) != OGRERR_NONE)
+        st = gf_fail(GF_EIO, "class outlines %s: %s", path, gf_terrain_gdal_msg());
+done:
+    close_band_and_layer(out, vmem, mem, srs);
+    free(v);
+    if (n)
+        *n = count;
     return st;
 }
 
