@@ -764,15 +764,23 @@ static void case_dem(const job *j, const char *casedir, gf_raster *dem)
     free(tp), free(val), free(path);
 }
 
+/* a release's thalweg and alpha-beta (ok 0: why says what is missing) */
+typedef struct ab_release {
+    int ok;
+    char why[1024];
+    double *xyzs;   /* the thalweg: x y z s per point */
+    size_t n;
+    gf_alpha_beta ab;
+} ab_release;
+
 /* Each release's steepest-descent thalweg from its highest DEM cell, its
  * alpha-beta runout, and beside it each member's dynamic runout: the
  * farthest thalweg point where the member's peak pressure exceeds the
- * threshold.  DIR/alphaBeta.csv. */
-static void alpha_beta(const job *j, const char *casedir)
+ * threshold (sdyn[k], NAN when none).  DIR/alphaBeta.csv.  Returns the
+ * releases' thalwegs (ab_free). */
+static ab_release *alpha_beta(const job *j, const gf_raster *dem, double *sdyn)
 {
     const config *c = j->c;
-    gf_raster dem;
-    case_dem(j, casedir, &dem);
     gf_alpha_beta_params p;
     gf_alpha_beta_params_default(&p);
     char *rd = gf_path(j->dir, "releases");
@@ -782,51 +790,52 @@ static void alpha_beta(const job *j, const char *casedir)
     if (!o) die("cannot write %s", csv);
     fprintf(o, "release,scenario,status,z_top_m,beta_deg,alpha_deg,s_beta_m,s_alpha_m,s_alpha_minus_sd_m,"
                "s_alpha_plus_sd_m,s_thalweg_m,s_dynamic_m,dynamic_minus_alpha_m,reason\n");
-    unsigned char *mask = malloc((size_t)dem.nx * (size_t)dem.ny);
-    if (!mask) die("out of memory");
+    unsigned char *mask = malloc((size_t)dem->nx * (size_t)dem->ny);
+    ab_release *res = calloc(j->A->n, sizeof *res);
+    if (!mask || !res) die("out of memory");
     size_t rows = 0;
+    for (size_t k = 0; k < j->nm; ++k) sdyn[k] = NAN;
     for (size_t r = 0; r < j->A->n; ++r) {
         const release *R = &j->A->r[r];
-        char name[64], why[1024] = "";
+        ab_release *T = &res[r];
+        char name[64];
         snprintf(name, sizeof name, "r%ld.shp", R->id);
         char *shp = gf_path(rd, name);
-        if (write_release_shp(j->A, R, shp, why, sizeof why)) die("%s", why);
+        if (write_release_shp(j->A, R, shp, T->why, sizeof T->why)) die("%s", T->why);
         gf_polygons P;
         if (gf_polygons_read(shp, NULL, 1, &P)) die("%s: %s", shp, gf_error_detail());
-        gf_polygons_mask(&P, &dem, mask);
+        gf_polygons_mask(&P, dem, mask);
         gf_polygons_free(&P);
         free(shp);
         long top = -1;
-        for (size_t q = 0; q < (size_t)dem.nx * (size_t)dem.ny; ++q)
-            if (mask[q] && !isnan(dem.z[q]) && (top < 0 || dem.z[q] > dem.z[top])) top = (long)q;
-        gf_alpha_beta ab;
-        double *xyzs = NULL;
-        size_t n = 0;
-        int ok = top >= 0;
-        if (!ok) snprintf(why, sizeof why, "no DEM cell in the polygon");
-        if (ok && gf_thalweg_d8(&dem, (int)(top % dem.nx), (int)(top / dem.nx), 5, 1000, &xyzs, &n)) {
-            snprintf(why, sizeof why, "thalweg: %s", gf_error_detail());
-            ok = 0;
+        for (size_t q = 0; q < (size_t)dem->nx * (size_t)dem->ny; ++q)
+            if (mask[q] && !isnan(dem->z[q]) && (top < 0 || dem->z[q] > dem->z[top])) top = (long)q;
+        T->ok = top >= 0;
+        if (!T->ok) snprintf(T->why, sizeof T->why, "no DEM cell in the polygon");
+        if (T->ok && gf_thalweg_d8(dem, (int)(top % dem->nx), (int)(top / dem->nx), 5, 1000, &T->xyzs, &T->n)) {
+            snprintf(T->why, sizeof T->why, "thalweg: %s", gf_error_detail());
+            T->ok = 0;
         }
+        const size_t n = T->n;
         double *s = NULL, *z = NULL;
-        if (ok) {
+        if (T->ok) {
             s = malloc(n * sizeof *s), z = malloc(n * sizeof *z);
             if (!s || !z) die("out of memory");
-            for (size_t i = 0; i < n; ++i) z[i] = xyzs[4 * i + 2], s[i] = xyzs[4 * i + 3];
-            if (gf_alpha_beta_profile(n, s, z, &p, &ab)) {
-                snprintf(why, sizeof why, "alpha-beta: %s", gf_error_detail());
-                ok = 0;
+            for (size_t i = 0; i < n; ++i) z[i] = T->xyzs[4 * i + 2], s[i] = T->xyzs[4 * i + 3];
+            if (gf_alpha_beta_profile(n, s, z, &p, &T->ab)) {
+                snprintf(T->why, sizeof T->why, "alpha-beta: %s", gf_error_detail());
+                T->ok = 0;
             }
         }
+        const gf_alpha_beta ab = T->ab;
         for (size_t k = 0; k < j->nm; ++k) {
             const member *m = &j->m[k];
             if (m->rel != r) continue;
             fprintf(o, "%ld,%s,", R->id, c->s[m->scen].name);
-            if (!ok) {
-                fprintf(o, "%s,,,,,,,,,,,\"%s\"\n", m->ok ? "ok" : "failed", why);
+            if (!T->ok) {
+                fprintf(o, "%s,,,,,,,,,,,\"%s\"\n", m->ok ? "ok" : "failed", T->why);
                 continue;
             }
-            double sdyn = NAN;
             if (m->ok) {
                 char md[4096];
                 member_dir(j, m, md, sizeof md);
@@ -834,45 +843,210 @@ static void alpha_beta(const job *j, const char *casedir)
                 gf_raster pr;
                 if (gf_raster_read(f, &pr)) die("%s: %s", f, gf_error_detail());
                 free(f);
-                sdyn = 0;
+                sdyn[k] = 0;
                 for (size_t i = 0; i < n; ++i) {
-                    const double col = floor((xyzs[4 * i] - pr.gt[0]) / pr.gt[1]);
-                    const double row = floor((xyzs[4 * i + 1] - pr.gt[3]) / pr.gt[5]);
+                    const double col = floor((T->xyzs[4 * i] - pr.gt[0]) / pr.gt[1]);
+                    const double row = floor((T->xyzs[4 * i + 1] - pr.gt[3]) / pr.gt[5]);
                     if (col < 0 || row < 0 || col >= pr.nx || row >= pr.ny) continue;
                     const double v = pr.z[(size_t)row * (size_t)pr.nx + (size_t)col];
-                    if (v > c->threshold) sdyn = s[i];
+                    if (v > c->threshold) sdyn[k] = s[i];
                 }
                 gf_raster_free(&pr);
             }
+            const double sd = sdyn[k];
             fprintf(o, "%s,%.2f,%.3f,%.3f,%.1f,", m->ok ? "ok" : "failed", z[0], ab.beta, ab.alpha, ab.s_beta);
             for (int q = 0; q < 3; ++q)
                 isnan(ab.s_alpha[q]) ? fprintf(o, ",") : fprintf(o, "%.1f,", ab.s_alpha[q]);
             fprintf(o, "%.1f,", s[n - 1]);
-            if (isnan(sdyn))
+            if (isnan(sd))
                 fprintf(o, ",,\n");
             else if (isnan(ab.s_alpha[0]))
-                fprintf(o, "%.1f,,\n", sdyn);
+                fprintf(o, "%.1f,,\n", sd);
             else
-                fprintf(o, "%.1f,%.1f,\n", sdyn, sdyn - ab.s_alpha[0]);
+                fprintf(o, "%.1f,%.1f,\n", sd, sd - ab.s_alpha[0]);
             ++rows;
         }
-        if (ok && !isnan(ab.s_alpha[0]))
+        if (T->ok && !isnan(ab.s_alpha[0]))
             printf("alphaBeta r%ld: beta %.2f deg, alpha %.2f deg, alpha runout s = %.0f m along the thalweg\n", R->id,
                    ab.beta, ab.alpha, ab.s_alpha[0]);
-        else if (ok)
+        else if (T->ok)
             printf("alphaBeta r%ld: beta %.2f deg, alpha %.2f deg, the alpha line meets no terrain before the "
                    "thalweg's end (%.0f m)\n",
                    R->id, ab.beta, ab.alpha, s[n - 1]);
         else
-            printf("alphaBeta r%ld: %s\n", R->id, why);
-        free(xyzs), free(s), free(z);
+            printf("alphaBeta r%ld: %s\n", R->id, T->why);
+        free(s), free(z);
     }
     if (fclose(o)) die("cannot write %s", csv);
     printf("alphaBeta=%s (%zu rows)\n", csv, rows);
     free(mask), free(rd), free(csv);
-    gf_raster_free(&dem);
+    return res;
 }
 
+static void ab_free(ab_release *res, size_t n)
+{
+    if (!res) return;
+    for (size_t r = 0; r < n; ++r) free(res[r].xyzs);
+    free(res);
+}
+
+/*---------------------------------------------------------------- the outlines --*/
+
+static int leaked(const member *m);
+
+/* an OGR field of name and type on layer L (die naming the file) */
+static void add_field(OGRLayerH L, const char *name, OGRFieldType t, const char *path)
+{
+    OGRFieldDefnH d = OGR_Fld_Create(name, t);
+    const OGRErr e = OGR_L_CreateField(L, d, TRUE);
+    OGR_Fld_Destroy(d);
+    if (e != OGRERR_NONE) die("%s: field %s: %s", path, name, CPLGetLastErrorMsg());
+}
+
+static void set_real(OGRFeatureH f, const char *name, double v)
+{
+    if (isfinite(v)) OGR_F_SetFieldDouble(f, OGR_F_GetFieldIndex(f, name), v);
+}
+
+static void put_feature(OGRLayerH L, OGRFeatureH f, const char *path)
+{
+    if (OGR_L_CreateFeature(L, f) != OGRERR_NONE) die("%s: %s", path, CPLGetLastErrorMsg());
+    OGR_F_Destroy(f);
+}
+
+/* the point at distance s along a thalweg (x y z s per point) */
+static void thalweg_point(const ab_release *T, double s, double *x, double *y)
+{
+    const double *q = T->xyzs;
+    size_t i = 1;
+    while (i + 1 < T->n && q[4 * i + 3] < s) ++i;
+    const double s0 = q[4 * (i - 1) + 3], s1 = q[4 * i + 3];
+    const double w = s1 > s0 ? fmin(1.0, fmax(0.0, (s - s0) / (s1 - s0))) : 0.0;
+    *x = q[4 * (i - 1)] + w * (q[4 * i] - q[4 * (i - 1)]);
+    *y = q[4 * (i - 1) + 1] + w * (q[4 * i + 1] - q[4 * (i - 1) + 1]);
+}
+
+/* DIR/SCENARIO/outlines.gpkg: the pressure zones as polygons (zones:
+ * class, lower_kPa, upper_kPa, area_m2; gf_class_outlines), the scenario's
+ * releases (releases: the polygon, id, depth_m, status, affected_m2,
+ * maxPressure_kPa, reason, and with alpha-beta beta_deg, alpha_deg,
+ * s_alpha_m, s_dynamic_m, dynamic_minus_alpha_m) and with alpha-beta each
+ * release's thalweg (thalwegs) and its runout points along it (runouts:
+ * kind beta, alpha, alpha_minus_sd, alpha_plus_sd, dynamic; s_m the
+ * distance along the thalweg) */
+static void write_outlines(const job *j, size_t s, const char *outdir, const ab_release *abr, const double *sdyn)
+{
+    const config *c = j->c;
+    char *zf = gf_path(outdir, "zones.tif"), *gp = gf_path(outdir, "outlines.gpkg"), *tmp = NULL;
+    if (asprintf(&tmp, "%s.tmp.gpkg", gp) < 0) die("out of memory");
+    gf_raster zr;
+    if (gf_raster_read(zf, &zr)) die("%s: %s", zf, gf_error_detail());
+    size_t nz = 0;
+    if (gf_class_outlines(tmp, "zones", &zr, zr.z, c->n_zones, c->zones, "kPa", &nz)) die("%s", gf_error_detail());
+    GDALDatasetH ds = GDALOpenEx(tmp, GDAL_OF_VECTOR | GDAL_OF_UPDATE, NULL, NULL, NULL);
+    if (!ds) die("%s: %s", tmp, CPLGetLastErrorMsg());
+    OGRSpatialReferenceH dsrs = NULL;
+    if (zr.wkt && *zr.wkt) {
+        dsrs = OSRNewSpatialReference(zr.wkt);
+        if (dsrs) OSRSetAxisMappingStrategy(dsrs, OAMS_TRADITIONAL_GIS_ORDER);
+    }
+    /* the releases */
+    OGRLayerH L = GDALDatasetCreateLayer(ds, "releases", j->A->srs, wkbMultiPolygon, NULL);
+    if (!L) die("%s: layer releases: %s", tmp, CPLGetLastErrorMsg());
+    add_field(L, "id", OFTInteger64, tmp);
+    add_field(L, "depth_m", OFTReal, tmp);
+    add_field(L, "status", OFTString, tmp);
+    add_field(L, "affected_m2", OFTReal, tmp);
+    add_field(L, "maxPressure_kPa", OFTReal, tmp);
+    if (abr) {
+        static const char *abf[] = {"beta_deg", "alpha_deg", "s_alpha_m", "s_dynamic_m", "dynamic_minus_alpha_m"};
+        for (int q = 0; q < 5; ++q) add_field(L, abf[q], OFTReal, tmp);
+    }
+    add_field(L, "reason", OFTString, tmp);
+    if (OGR_L_StartTransaction(L) != OGRERR_NONE) die("%s: %s", tmp, CPLGetLastErrorMsg());
+    for (size_t k = 0; k < j->nm; ++k) {
+        const member *m = &j->m[k];
+        if (m->scen != s) continue;
+        const release *R = &j->A->r[m->rel];
+        OGRFeatureH f = OGR_F_Create(OGR_L_GetLayerDefn(L));
+        OGRGeometryH g = OGR_G_ForceToMultiPolygon(OGR_G_Clone(R->geom));
+        OGR_F_SetGeometryDirectly(f, g);
+        OGR_F_SetFieldInteger64(f, OGR_F_GetFieldIndex(f, "id"), R->id);
+        set_real(f, "depth_m", m->depth);
+        const int boundary = m->ok && c->clip && leaked(m);
+        OGR_F_SetFieldString(f, OGR_F_GetFieldIndex(f, "status"), !m->ok ? "failed" : boundary ? "boundary" : "ok");
+        if (m->ok) set_real(f, "affected_m2", m->affected), set_real(f, "maxPressure_kPa", m->maxppr);
+        if (!m->ok) OGR_F_SetFieldString(f, OGR_F_GetFieldIndex(f, "reason"), m->why);
+        if (boundary) {
+            char why[256];
+            snprintf(why, sizeof why, "flow left through the clip's boundary: %.4g m3 of %.4g m3 (buffer %g m)",
+                     m->outflow, m->volume, m->buffer);
+            OGR_F_SetFieldString(f, OGR_F_GetFieldIndex(f, "reason"), why);
+        }
+        if (abr && abr[m->rel].ok) {
+            const gf_alpha_beta *ab = &abr[m->rel].ab;
+            set_real(f, "beta_deg", ab->beta), set_real(f, "alpha_deg", ab->alpha);
+            set_real(f, "s_alpha_m", ab->s_alpha[0]), set_real(f, "s_dynamic_m", sdyn[k]);
+            set_real(f, "dynamic_minus_alpha_m", sdyn[k] - ab->s_alpha[0]);
+        }
+        put_feature(L, f, tmp);
+    }
+    if (OGR_L_CommitTransaction(L) != OGRERR_NONE) die("%s: %s", tmp, CPLGetLastErrorMsg());
+    size_t nth = 0, npt = 0;
+    if (abr) {
+        /* each release's thalweg and its runout points */
+        OGRLayerH T = GDALDatasetCreateLayer(ds, "thalwegs", dsrs, wkbLineString, NULL);
+        OGRLayerH P = T ? GDALDatasetCreateLayer(ds, "runouts", dsrs, wkbPoint, NULL) : NULL;
+        if (!P) die("%s: layers thalwegs, runouts: %s", tmp, CPLGetLastErrorMsg());
+        add_field(T, "id", OFTInteger64, tmp);
+        add_field(T, "beta_deg", OFTReal, tmp);
+        add_field(T, "alpha_deg", OFTReal, tmp);
+        add_field(T, "s_thalweg_m", OFTReal, tmp);
+        add_field(P, "id", OFTInteger64, tmp);
+        add_field(P, "kind", OFTString, tmp);
+        add_field(P, "s_m", OFTReal, tmp);
+        if (OGR_L_StartTransaction(T) != OGRERR_NONE) die("%s: %s", tmp, CPLGetLastErrorMsg());
+        for (size_t k = 0; k < j->nm; ++k) {
+            const member *m = &j->m[k];
+            const ab_release *A = &abr[m->rel];
+            if (m->scen != s || !A->ok) continue;
+            const long id = j->A->r[m->rel].id;
+            OGRFeatureH f = OGR_F_Create(OGR_L_GetLayerDefn(T));
+            OGRGeometryH g = OGR_G_CreateGeometry(wkbLineString);
+            for (size_t i = 0; i < A->n; ++i) OGR_G_AddPoint_2D(g, A->xyzs[4 * i], A->xyzs[4 * i + 1]);
+            OGR_F_SetGeometryDirectly(f, g);
+            OGR_F_SetFieldInteger64(f, 0, id);
+            set_real(f, "beta_deg", A->ab.beta), set_real(f, "alpha_deg", A->ab.alpha);
+            set_real(f, "s_thalweg_m", A->xyzs[4 * (A->n - 1) + 3]);
+            put_feature(T, f, tmp);
+            ++nth;
+            const char *kind[] = {"beta", "alpha", "alpha_minus_sd", "alpha_plus_sd", "dynamic"};
+            const double at[] = {A->ab.s_beta, A->ab.s_alpha[0], A->ab.s_alpha[1], A->ab.s_alpha[2], sdyn[k]};
+            for (int q = 0; q < 5; ++q) {
+                if (!isfinite(at[q])) continue;
+                double x, y;
+                thalweg_point(A, at[q], &x, &y);
+                OGRFeatureH pf = OGR_F_Create(OGR_L_GetLayerDefn(P));
+                OGRGeometryH pg = OGR_G_CreateGeometry(wkbPoint);
+                OGR_G_SetPoint_2D(pg, 0, x, y);
+                OGR_F_SetGeometryDirectly(pf, pg);
+                OGR_F_SetFieldInteger64(pf, 0, id);
+                OGR_F_SetFieldString(pf, 1, kind[q]);
+                OGR_F_SetFieldDouble(pf, 2, at[q]);
+                put_feature(P, pf, tmp);
+                ++npt;
+            }
+        }
+        if (OGR_L_CommitTransaction(T) != OGRERR_NONE) die("%s: %s", tmp, CPLGetLastErrorMsg());
+    }
+    GDALClose(ds);
+    if (dsrs) OSRDestroySpatialReference(dsrs);
+    if (rename(tmp, gp)) die("cannot write %s", gp);
+    printf("outlines %s: %zu zone polygons%s", gp, nz, abr ? "" : "\n");
+    if (abr) printf(", %zu thalwegs, %zu runout points\n", nth, npt);
+    gf_raster_free(&zr);
+    free(zf), free(gp), free(tmp);
+}
 
 /*---------------------------------------------------------------- clipped sub-domains --*/
 
@@ -1831,6 +2005,7 @@ int main(int argc, char **argv)
     fprintf(S, "threshold %g kPa; zones", c.threshold);
     for (size_t z = 0; z < c.n_zones; ++z) fprintf(S, " %g", c.zones[z]);
     fprintf(S, " kPa\n");
+    size_t merged[MAXSCEN] = {0};
     for (size_t s = 0; s < c.ns; ++s) {
         char *od = gf_path(j.dir, c.s[s].name);
         const size_t nmg = c.clip ? merge_clipped(&j, s, od) : merge(&j, s, od);
@@ -1842,6 +2017,7 @@ int main(int argc, char **argv)
             }
         fprintf(S, "scenario %s: %zu members merged into %s/ (largest affected area %.0f m2, largest peak pressure %.1f kPa)\n",
                 c.s[s].name, nmg, c.s[s].name, amax, pmax);
+        merged[s] = nmg;
         printf("scenario %s: %zu members merged (%s)\n", c.s[s].name, nmg, od);
         free(od);
     }
@@ -1853,7 +2029,25 @@ int main(int argc, char **argv)
                     c.s[j.m[k].scen].name, A.r[j.m[k].rel].id, j.m[k].outflow, j.m[k].volume, j.m[k].buffer);
     if (c.clip) fprintf(S, "clip: buffer %g m, reach %g m, climb %g m, retries %ld\n", c.buffer, c.reach, c.climb, c.retries);
     fclose(S);
-    if (with_ab) alpha_beta(&j, casereal);
+    /* alpha-beta beside the dynamic runouts, and the outlines */
+    ab_release *abr = NULL;
+    double *sdyn = NULL;
+    if (with_ab) {
+        gf_raster dem;
+        case_dem(&j, casereal, &dem);
+        sdyn = malloc(j.nm * sizeof *sdyn);
+        if (!sdyn) die("out of memory");
+        abr = alpha_beta(&j, &dem, sdyn);
+        gf_raster_free(&dem);
+    }
+    for (size_t s = 0; s < c.ns; ++s) {
+        if (!merged[s]) continue;
+        char *od = gf_path(j.dir, c.s[s].name);
+        write_outlines(&j, s, od, abr, sdyn);
+        free(od);
+    }
+    ab_free(abr, A.n);
+    free(sdyn);
     const size_t ran_now = torun;
     printf("members=%zu\nran=%zu\nresumed=%zu\nfailed=%zu\nseconds=%.1f\nsecondsPerMember=%.2f\n", j.nm, ran_now,
            resumed, nfailed, wall, nran ? sec_sum / (double)nran : 0.0);

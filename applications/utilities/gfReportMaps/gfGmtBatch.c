@@ -15,10 +15,14 @@
  * succeeded.  Besides GMT's modules, three calls of its own, so that a
  * report needs no other process than this one and one ghostscript:
  *
- *   gfvector IN OUT      the lines or polygons of the vector file IN (any
- *                        OGR format: a shapefile) as GMT's OGR/GMT text
- *                        OUT, without attributes (what `ogr2ogr -f OGR_GMT`
- *                        writes and GMT would run ogr2ogr for at each call)
+ *   gfvector IN OUT [LAYER [WHERE]]
+ *                        the lines, polygons or points of the vector file IN
+ *                        (any OGR format: a shapefile; its first layer, or
+ *                        LAYER of a GeoPackage; only the features of the
+ *                        OGR attribute filter WHERE, e.g. "kind = 'alpha'")
+ *                        as GMT's OGR/GMT text OUT, without attributes (what
+ *                        `ogr2ogr -f OGR_GMT` writes and GMT would run
+ *                        ogr2ogr for at each call)
  *   gfcrs RASTER OUT     the name of RASTER's projected or geographic CRS
  *                        (GDAL), one line in OUT (empty without a CRS)
  *   gfcontours EVERY OUT LABELS IN...
@@ -58,6 +62,7 @@
  */
 #define _GNU_SOURCE
 #include <gmt/gmt.h>
+#include <cpl_error.h>
 #include <gdal.h>
 #include <ogr_api.h>
 #include <ogr_srs_api.h>
@@ -119,7 +124,7 @@ static void write_geometry(FILE* out, OGRGeometryH g)
     }
 }
 
-static int vector_to_gmt(const char* in, const char* outName)
+static int vector_to_gmt(const char* in, const char* outName, const char* lname, const char* where)
 {
     GDALAllRegister();
     GDALDatasetH ds = GDALOpenEx(in, GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
@@ -127,9 +132,16 @@ static int vector_to_gmt(const char* in, const char* outName)
         fprintf(stderr, "gfGmtBatch: gfvector: %s: not a vector file GDAL/OGR reads\n", in);
         return 1;
     }
-    OGRLayerH layer = GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : NULL;
+    OGRLayerH layer = lname && *lname                     ? GDALDatasetGetLayerByName(ds, lname)
+                      : GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0)
+                                                         : NULL;
     if (!layer) {
-        fprintf(stderr, "gfGmtBatch: gfvector: %s: no layer\n", in);
+        fprintf(stderr, "gfGmtBatch: gfvector: %s: no layer%s%s\n", in, lname && *lname ? " " : "", lname ? lname : "");
+        GDALClose(ds);
+        return 1;
+    }
+    if (where && *where && OGR_L_SetAttributeFilter(layer, where) != OGRERR_NONE) {
+        fprintf(stderr, "gfGmtBatch: gfvector: %s: the filter \"%s\" (%s)\n", in, where, CPLGetLastErrorMsg());
         GDALClose(ds);
         return 1;
     }
@@ -557,13 +569,15 @@ static int convert_figures(int n, char** names, const char* dpiText, const char*
    it succeeded */
 static int call(void* api, int n, char** args, const char* file, long nline)
 {
+    if (strcmp(args[0], "gfvector") == 0 && n >= 3 && n <= 5)
+        return vector_to_gmt(args[1], args[2], n > 3 ? args[3] : NULL, n > 4 ? args[4] : NULL);
     if (strcmp(args[0], "gfvector") == 0 || strcmp(args[0], "gfcrs") == 0) {
         if (n != 3) {
-            fprintf(stderr, "gfGmtBatch: %s line %ld: %s takes 2 arguments (IN OUT), not %d\n", file, nline, args[0],
-                    n - 1);
+            fprintf(stderr, "gfGmtBatch: %s line %ld: %s takes %s, not %d\n", file, nline, args[0],
+                    args[0][2] == 'v' ? "2 to 4 arguments (IN OUT [LAYER [WHERE]])" : "2 arguments (IN OUT)", n - 1);
             return 1;
         }
-        return args[0][2] == 'v' ? vector_to_gmt(args[1], args[2]) : crs_name(args[1], args[2]);
+        return args[0][2] == 'v' ? vector_to_gmt(args[1], args[2], NULL, NULL) : crs_name(args[1], args[2]);
     }
     if (strcmp(args[0], "gflink") == 0) {
         if (n != 3) {
