@@ -41,8 +41,10 @@ The dictionary is checked first (<code>gfRegionalMap -check</code>: a bad key, v
 refused in its words before anything runs).</p>
 <p>Writes into the output folder, per scenario, pressurePeakMax.tif, hPeakMax.tif, speedPeakMax.tif
 (each cell's largest peak over the releases), count.tif (the releases reaching the cell), releaseId.tif
-(the release giving its largest pressure), zones.tif (the pressure classes), and members.csv,
-summary.txt (with ALPHA_BETA alphaBeta.csv). Every scenario's maps and the release polygons are
+(the release giving its largest pressure), zones.tif (the pressure classes), outlines.gpkg (the zones as polygons, the releases with their
+status, with ALPHA_BETA each release's thalweg and its alpha-beta and dynamic runout points), and
+members.csv, summary.txt, regional.qgs (a QGIS project of all of it, styled; with ALPHA_BETA
+alphaBeta.csv). Every scenario's maps, releases and runout points and the release polygons are
 loaded. Run again with the same parameters into the same folder, a cancelled or killed batch
 resumes. Failed members (exit status 3) are a result: a warning lists them, the maps merge the
 others.</p>'''
@@ -134,6 +136,10 @@ class RegionalMap(GranflowAlgorithm):
         self.addOutput(QgsProcessingOutputFile('MEMBERS', 'Every member (members.csv)'))
         self.addOutput(QgsProcessingOutputFile('SUMMARY', 'Summary (summary.txt)'))
         self.addOutput(QgsProcessingOutputFile('ALPHA_BETA_TABLE', 'Alpha-beta beside the dynamic runout (CSV)'))
+        self.addOutput(QgsProcessingOutputMultipleLayers(
+            'OUTLINES', 'Outlines of every scenario (outlines.gpkg: zones, releases, with alpha-beta thalwegs and '
+            'runouts)'))
+        self.addOutput(QgsProcessingOutputFile('PROJECT', 'The QGIS project of the results (regional.qgs)'))
         self.addOutput(QgsProcessingOutputString('SCENARIO_NAMES', 'The scenarios (; between)'))
         self.addOutput(QgsProcessingOutputNumber('MEMBERS_COUNT', 'Members'))
         self.addOutput(QgsProcessingOutputNumber('FAILED', 'Members that failed'))
@@ -314,6 +320,22 @@ class RegionalMap(GranflowAlgorithm):
                 styles.load(context, os.path.normpath(rel), 'release areas', 'MAPS',
                             styles.OutlineStyle('#202020', '0.5'))
         out['MAPS'] = maps
+        # the outlines: each scenario's releases (with their status and alpha-beta), its runout points
+        outlines = []
+        for s in names:
+            g = os.path.join(folder, s, 'outlines.gpkg')
+            if not os.path.isfile(g):
+                continue
+            outlines.append(g)
+            styles.load(context, g + '|layername=releases', '{}: releases'.format(s), 'OUTLINES',
+                        styles.OutlineStyle('#202020', '0.5'))
+            if 'ALPHA_BETA_TABLE' in out:
+                styles.load(context, g + '|layername=runouts', '{}: alpha-beta and dynamic runouts'.format(s),
+                            'OUTLINES')
+        out['OUTLINES'] = outlines
+        project = os.path.join(folder, 'regional.qgs')
+        if os.path.isfile(project):
+            out['PROJECT'] = project
         styles.load(context, out['MEMBERS'], 'regional: members', 'MEMBERS')
         if rc == 3:
             with open(out['SUMMARY'], encoding='utf-8', errors='replace') as f:

@@ -214,6 +214,8 @@ static void read_config(const char *path, const char *casedir, config *c)
         c->areas = gf_path(casedir, areas);
     }
     if (!gf_exists(c->areas)) gf_dict_refuse(c->path, gf_dict_find(D, "releaseAreas"), "releaseAreas", "%s: no such file", c->areas);
+    char *real = realpath(c->areas, NULL);   /* named without ../ in the summary */
+    if (real) free(c->areas), c->areas = real;
     snprintf(c->id_attr, sizeof c->id_attr, "%s", gf_dict_word(D, "idAttribute", "id", 63));
     snprintf(c->slope_attr, sizeof c->slope_attr, "%s", gf_dict_word(D, "slopeAttribute", "slope_deg", 63));
     snprintf(c->alt_attr, sizeof c->alt_attr, "%s", gf_dict_word(D, "altitudeAttribute", "altitude_m", 63));
