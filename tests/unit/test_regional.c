@@ -2,7 +2,8 @@
 /* Regional hazard indication (granflow/regional.h): terrain derivatives on
  * analytic surfaces, the release-area split of a ridge and a pyramid, the
  * Salm slope factor, alpha-beta on a parabolic profile, the D8 thalweg and
- * the merge of peak rasters. */
+ * the merge of peak rasters, and the box of a release's cells and their
+ * steepest-descent paths (gf_downslope_box). */
 #include "../gf_test.h"
 
 #include "granflow/constants.h"
@@ -319,6 +320,208 @@ static void thalweg_follows_steepest_descent(void **state)
     free(r.z);
 }
 
+/* ---- gf_downslope_box: the box of a release and its steepest-descent paths */
+
+static double valley(double x, double y, const double *p) { (void)y; return 1000 + p[0] * fabs(x); }
+
+/* the box of n cells (col, row pairs) of r; path_cells through *np */
+static gf_status dbox(const gf_raster *r, size_t n, const int *cr, double climb, double flat, int box[4], size_t *np)
+{
+    size_t c[16];
+    assert_true(n <= 16);
+    for (size_t k = 0; k < n; ++k)
+        c[k] = (size_t)cr[2 * k + 1] * (size_t)r->nx + (size_t)cr[2 * k];
+    return gf_downslope_box(r, n, c, climb, flat, box, np);
+}
+
+#define assert_box(b, c0, r0, c1, r1)                                                                              \
+    do {                                                                                                           \
+        assert_int_equal((b)[0], (c0));                                                                            \
+        assert_int_equal((b)[1], (r0));                                                                            \
+        assert_int_equal((b)[2], (c1));                                                                            \
+        assert_int_equal((b)[3], (r1));                                                                            \
+    } while (0)
+
+/* on a plane (cells of 5 m, 2.5 m lower each cell downslope) the path of one
+ * cell runs straight downslope to the grid's border: falling south, from
+ * (7, 2) down column 7 to row 19, a box one column wide and 18 cells on the
+ * path; falling south-east (the diagonal drops 5 m in 7.07 m, steeper than
+ * the 2.5 m in 5 m of a side), from (3, 2) diagonally to the bottom row at
+ * (20, 19), then east along it (still 2.5 m a cell lower) to the corner
+ * (29, 19): 18 + 9 cells.  Strict D8 (max_climb 0) ends there; with
+ * max_climb 5 m and max_flat 0 the south path takes one level step along
+ * the border row (west or east: either neighbour, the first is (6, 19))
+ * and ends, its box then 2 columns wide */
+static void downslope_box_runs_down_a_plane(void **state)
+{
+    (void)state;
+    int box[4];
+    size_t np = 0;
+    const double ps[2] = {0, 0.5};
+    gf_raster r = grid(30, 20, 5, plane, ps);
+    const int a[2] = {7, 2};
+    assert_int_equal(dbox(&r, 1, a, 0, 0, box, &np), GF_SUCCESS);
+    assert_box(box, 7, 2, 7, 19);
+    assert_int_equal(np, 18);
+    /* max_flat 0 with a climb allowed: one step along the level border */
+    assert_int_equal(dbox(&r, 1, a, 5, 0, box, &np), GF_SUCCESS);
+    assert_box(box, 6, 2, 7, 19);
+    assert_int_equal(np, 19);
+    /* path_cells may be NULL */
+    assert_int_equal(dbox(&r, 1, a, 0, 0, box, NULL), GF_SUCCESS);
+    assert_box(box, 7, 2, 7, 19);
+    free(r.z);
+    const double pse[2] = {-0.5, 0.5};
+    r = grid(30, 20, 5, plane, pse);
+    const int b[2] = {3, 2};
+    assert_int_equal(dbox(&r, 1, b, 0, 0, box, &np), GF_SUCCESS);
+    assert_box(box, 3, 2, 29, 19);
+    assert_int_equal(np, 18 + 9);
+    free(r.z);
+}
+
+/* a V valley z = 1000 + 0.5 |x| (31 x 21 cells of 5 m, its level floor the
+ * column 15, x = 0): from (25, 10) on its flank the path runs west down to
+ * the floor (15, 10), 11 cells; strict D8 ends there.  With max_climb 1 m
+ * (the flanks' cells next to the floor are 2.5 m higher) it follows the
+ * level floor (north: the first level neighbour, then keeping its
+ * direction) until it has gone more than max_flat without a new lowest
+ * point: k steps of 5 m with 5 k > max_flat, k = 3 for 12 m (rows 9..7) and
+ * 7 for 30 m (rows 9..3); a max_flat longer than the floor ends at the
+ * grid's border (row 0, 10 steps) */
+static void downslope_box_follows_a_valley_floor(void **state)
+{
+    (void)state;
+    int box[4];
+    size_t np = 0;
+    const double pv[1] = {0.5};
+    gf_raster r = grid(31, 21, 5, valley, pv);
+    const int a[2] = {25, 10};
+    assert_int_equal(dbox(&r, 1, a, 0, 1000, box, &np), GF_SUCCESS);
+    assert_box(box, 15, 10, 25, 10);
+    assert_int_equal(np, 11);
+    assert_int_equal(dbox(&r, 1, a, 1, 12, box, &np), GF_SUCCESS);
+    assert_box(box, 15, 10 - 3, 25, 10);
+    assert_int_equal(np, 11 + 3);
+    assert_int_equal(dbox(&r, 1, a, 1, 30, box, &np), GF_SUCCESS);
+    assert_box(box, 15, 10 - 7, 25, 10);
+    assert_int_equal(np, 11 + 7);
+    assert_int_equal(dbox(&r, 1, a, 1, 1000, box, &np), GF_SUCCESS);
+    assert_box(box, 15, 0, 25, 10);
+    assert_int_equal(np, 11 + 10);
+    free(r.z);
+}
+
+/* a pit on a plane falling east (2.5 m a cell): cell (12, 10) lowered by
+ * 4 m lies 1.5 m below its lowest neighbours (13, 9..11).  From (3, 10):
+ * with max_climb 1 m the path ends in the pit (the box cols 3..12, 10
+ * cells); with 2 m it climbs out eastwards (the level neighbours: the one
+ * in its direction, (13, 10), 5 m without a new lowest point, within
+ * max_flat 5 m), descends to the border column 29 (new lowest points all
+ * the way) and there follows the level border north for 5 m and one step
+ * more (rows 9 and 8): 27 + 2 cells, rows 8..10 */
+static void downslope_box_walks_through_shallow_pits(void **state)
+{
+    (void)state;
+    int box[4];
+    size_t np = 0;
+    const double pe[2] = {-0.5, 0};
+    gf_raster r = grid(30, 20, 5, plane, pe);
+    r.z[10 * 30 + 12] -= 4;
+    const int a[2] = {3, 10};
+    assert_int_equal(dbox(&r, 1, a, 1, 5, box, &np), GF_SUCCESS);
+    assert_box(box, 3, 10, 12, 10);
+    assert_int_equal(np, 10);
+    assert_int_equal(dbox(&r, 1, a, 2, 5, box, &np), GF_SUCCESS);
+    assert_box(box, 3, 8, 29, 10);
+    assert_int_equal(np, 27 + 2);
+    /* strict D8 stops in the pit whatever max_flat */
+    assert_int_equal(dbox(&r, 1, a, 0, 100, box, &np), GF_SUCCESS);
+    assert_box(box, 3, 10, 12, 10);
+    assert_int_equal(np, 10);
+    free(r.z);
+}
+
+/* several cells: the box is the union of their boxes.  On the plane falling
+ * east two cells (3, 4) and (5, 15) run to column 29 each: rows 4..15,
+ * 27 + 25 cells on the paths.  A block of 3 x 3 cells (cols 3..5, rows
+ * 9..11): only the east column's cells start a path (the others' steepest
+ * neighbour is a release cell), 3 paths of 25 cells, the block's other 6
+ * cells on none.  In the valley, cells on both flanks (25, 10) and (5, 10)
+ * meet on the floor (15, 10): one floor walk (3 cells for max_flat 12 m),
+ * 11 + 3 + 10 cells (the second path ends where it meets the first, in
+ * either order).  A NODATA cell of the release is skipped. */
+static void downslope_box_of_several_cells_is_the_union(void **state)
+{
+    (void)state;
+    int box[4];
+    size_t np = 0;
+    const double pe[2] = {-0.5, 0};
+    gf_raster r = grid(30, 20, 5, plane, pe);
+    const int two[4] = {3, 4, 5, 15};
+    assert_int_equal(dbox(&r, 2, two, 0, 0, box, &np), GF_SUCCESS);
+    assert_box(box, 3, 4, 29, 15);
+    assert_int_equal(np, 27 + 25);
+    int block[18];
+    for (int k = 0; k < 9; ++k)
+        block[2 * k] = 3 + k % 3, block[2 * k + 1] = 9 + k / 3;
+    assert_int_equal(dbox(&r, 9, block, 0, 0, box, &np), GF_SUCCESS);
+    assert_box(box, 3, 9, 29, 11);
+    assert_int_equal(np, 3 * 25);
+    /* a NODATA cell, (1, 2), is no part of the box */
+    r.z[2 * 30 + 1] = NAN;
+    const int withnan[4] = {1, 2, 5, 15};
+    assert_int_equal(dbox(&r, 2, withnan, 0, 0, box, &np), GF_SUCCESS);
+    assert_box(box, 5, 15, 29, 15);
+    assert_int_equal(np, 25);
+    free(r.z);
+    const double pv[1] = {0.5};
+    r = grid(31, 21, 5, valley, pv);
+    const int flanks[4] = {25, 10, 5, 10}, flanks2[4] = {5, 10, 25, 10};
+    assert_int_equal(dbox(&r, 2, flanks, 1, 12, box, &np), GF_SUCCESS);
+    assert_box(box, 5, 7, 25, 10);
+    assert_int_equal(np, 11 + 3 + 10);
+    assert_int_equal(dbox(&r, 2, flanks2, 1, 12, box, &np), GF_SUCCESS);
+    assert_box(box, 5, 7, 25, 10);
+    assert_int_equal(np, 11 + 3 + 10);
+    free(r.z);
+}
+
+/* refused: no cell (n 0) or none with a DEM value and a cell outside the
+ * grid (GF_EDOM: "no valid cell, a cell outside the grid"), max_climb or
+ * max_flat negative or not finite (GF_EDOM), no DEM, no cells for n > 0 or
+ * no box (GF_EINVAL: a null pointer) */
+static void downslope_box_refusals(void **state)
+{
+    (void)state;
+    int box[4];
+    size_t np = 0;
+    const double pe[2] = {-0.5, 0};
+    gf_raster r = grid(30, 20, 5, plane, pe);
+    const size_t ok = 10 * 30 + 3, out = 30 * 20, two[2] = {10 * 30 + 3, 30 * 20};
+    assert_int_equal(gf_downslope_box(&r, 0, NULL, 0, 0, box, &np), GF_EDOM);
+    assert_int_equal(gf_downslope_box(&r, 0, &ok, 0, 0, box, &np), GF_EDOM);
+    assert_int_equal(gf_downslope_box(&r, 1, &out, 0, 0, box, &np), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "600"));
+    assert_int_equal(gf_downslope_box(&r, 2, two, 0, 0, box, &np), GF_EDOM);
+    assert_int_equal(gf_downslope_box(&r, 1, &ok, -1, 0, box, &np), GF_EDOM);
+    assert_non_null(strstr(gf_error_detail(), "max_climb"));
+    assert_int_equal(gf_downslope_box(&r, 1, &ok, 0, -1, box, &np), GF_EDOM);
+    assert_int_equal(gf_downslope_box(&r, 1, &ok, NAN, 0, box, &np), GF_EDOM);
+    assert_int_equal(gf_downslope_box(&r, 1, &ok, 0, INFINITY, box, &np), GF_EDOM);
+    assert_int_equal(gf_downslope_box(&r, 1, &ok, 0, 0, NULL, &np), GF_EINVAL);
+    assert_int_equal(gf_downslope_box(&r, 1, NULL, 0, 0, box, &np), GF_EINVAL);
+    assert_int_equal(gf_downslope_box(NULL, 1, &ok, 0, 0, box, &np), GF_EINVAL);
+    r.z[ok] = NAN;
+    assert_int_equal(gf_downslope_box(&r, 1, &ok, 0, 0, box, &np), GF_EDOM);
+    /* the refusals left the DEM as it was: a valid cell still works */
+    const size_t c = 4 * 30 + 3;
+    assert_int_equal(gf_downslope_box(&r, 1, &c, 0, 0, box, &np), GF_SUCCESS);
+    assert_box(box, 3, 4, 29, 4);
+    assert_int_equal(np, 27);
+    free(r.z);
+}
+
 /* the merge of three rasters equals the cell-by-cell maximum, the count of
  * values above the threshold and the id of the maximum; NAN is not reached */
 static void merge_is_cellwise_max(void **state)
@@ -372,6 +575,11 @@ int main(void)
         cmocka_unit_test(salm_factor_matches_hand_values),
         cmocka_unit_test(alpha_beta_on_parabola),
         cmocka_unit_test(thalweg_follows_steepest_descent),
+        cmocka_unit_test(downslope_box_runs_down_a_plane),
+        cmocka_unit_test(downslope_box_follows_a_valley_floor),
+        cmocka_unit_test(downslope_box_walks_through_shallow_pits),
+        cmocka_unit_test(downslope_box_of_several_cells_is_the_union),
+        cmocka_unit_test(downslope_box_refusals),
         cmocka_unit_test(merge_is_cellwise_max),
     };
     return gf_run_tests("regional", tests, NULL, NULL);
