@@ -36,6 +36,7 @@
  *         reach    1000;   // [m] a path goes on along level ground this far, in [0, 100000] (1000)
  *         climb    5;      // [m] pits this deep are walked through, in [0, 100] (5)
  *         retries  2;      // runs again on a buffer x 2 (100 m from 0), in [0, 6] (2)
+ *         keep     no;     // keep each clip's meshes after its release ran (default no)
  *     }
  *
  * gfReleaseAreas -d0 writes such polygons (id, slope_deg, altitude_m, d0_m);
@@ -78,7 +79,9 @@
  * (OUT/clips/rID_bBUFFER/Inputs/clipDEM.tif: the region's pixels), meshed by
  * gfTerrainMesh with the case's coarsen and depth, and run on one worker for
  * all its scenarios; the cost grows with the releases, not with releases x
- * region.  The members' rasters are on their clip's grid; the merge places
+ * region.  Once they ran, the clip is removed (its log OUT/clips/rID_bBUFFER.log
+ * stays; keep yes keeps it): the disk holds the members' results, not a mesh
+ * per release.  The members' rasters are on their clip's grid; the merge places
  * them on the region's (the case's DEM: the same pixel size, an origin whole
  * pixels away, both checked); a DEM cell no clip holds is 0 (not reached).
  * A member whose flow reaches the outer faces of a clip side where the
@@ -131,6 +134,7 @@
 #include "gf_dict.h"
 #include "gf_members.h"
 #include "granflow/path_analysis.h"
+#include "granflow/qgis_project.h"
 #include "granflow/regional.h"
 #include "granflow/terrain.h"
 #include "granflow/version.h"
@@ -184,6 +188,7 @@ typedef struct config {
     int clip;
     double buffer, reach, climb;
     long retries;
+    int keep;           /* keep each clip's meshes after its release ran */
 } config;
 
 /* the dictionary is read with the typed readers of common/gf_dict.h, which
@@ -288,6 +293,7 @@ static void read_config(const char *path, const char *casedir, config *c)
         c->reach = gf_dict_number(cl, "reach", 1000, 0, 100000);
         c->climb = gf_dict_number(cl, "climb", 5, 0, 100);
         c->retries = gf_dict_whole(cl, "retries", 2, 0, 6);
+        c->keep = gf_dict_bool(cl, "keep", 0);
     }
     const gf_dict *in = NULL;
     const gf_dict_entry *u = gf_dict_unused(D, &in);
@@ -297,7 +303,7 @@ static void read_config(const char *path, const char *casedir, config *c)
         gf_dict_refuse(c->path, u, full,
             "unknown key (allowed: releaseAreas idAttribute releases slopeAttribute altitudeAttribute gradient zRef "
             "measured threshold zones scenarios clip; a scenario: d0Star gradient zRef, or thicknessAttribute factor; "
-            "clip: buffer reach climb retries)");
+            "clip: buffer reach climb retries keep)");
     }
     gf_dict_free(D);
 }
@@ -743,7 +749,7 @@ static size_t merge(const job *j, size_t s, char *outdir)
 /*---------------------------------------------------------------- -alphaBeta --*/
 
 /* the DEM of the case (constant/terrainProperties dem, relative to the case) */
-static void case_dem(const job *j, const char *casedir, gf_raster *dem)
+static void case_dem(const job *j, const char *casedir, gf_raster *dem, char **dem_path)
 {
     /* the value through foamDictionary, into a file of this process (array
      * tasks of one batch run at once) */
@@ -763,7 +769,11 @@ static void case_dem(const job *j, const char *casedir, gf_raster *dem)
     while (e > b && (e[-1] == '"' || e[-1] == ' ')) *--e = 0;
     char *path = b[0] == '/' ? strdup(b) : gf_path(casedir, b);
     if (gf_raster_read(path, dem)) die("the case's DEM %s: %s", path, gf_error_detail());
-    free(tp), free(val), free(path);
+    if (dem_path)
+        *dem_path = path;
+    else
+        free(path);
+    free(tp), free(val);
 }
 
 /* a release's thalweg and alpha-beta (ok 0: why says what is missing) */
@@ -1048,6 +1058,114 @@ static void write_outlines(const job *j, size_t s, const char *outdir, const ab_
     if (abr) printf(", %zu thalwegs, %zu runout points\n", nth, npt);
     gf_raster_free(&zr);
     free(zf), free(gp), free(tmp);
+}
+
+/*---------------------------------------------------------------- the QGIS project --*/
+
+/* the largest value of a raster (0 when it has none above 0) */
+static double raster_max(const char *dir, const char *name)
+{
+    char *f = gf_path(dir, name);
+    gf_raster r;
+    if (gf_raster_read(f, &r)) die("%s: %s", f, gf_error_detail());
+    double mx = 0;
+    for (size_t q = 0; q < (size_t)r.nx * (size_t)r.ny; ++q)
+        if (r.z[q] > mx) mx = r.z[q];
+    gf_raster_free(&r);
+    free(f);
+    return mx;
+}
+
+/* DIR/regional.qgs: a QGIS project of the batch, a legend group per merged
+ * scenario (the first one shown): its runout points and thalwegs (with
+ * alpha-beta), releases, pressure zones (raster shown, polygons hidden), the
+ * largest peak pressure, thickness and speed, the releases reaching each
+ * cell and the release of the largest pressure; under them the case's DEM
+ * as a hillshade.  Paths relative to DIR (the folder can move), the DEM's
+ * absolute. */
+static void write_project(const job *j, const size_t *merged, int with_ab, const char *casedir)
+{
+    const config *c = j->c;
+    gf_raster dem;
+    char *dem_path = NULL;
+    case_dem(j, casedir, &dem, &dem_path);
+    static const char *zone_colours[] = {"#ffdd00", "#1e6edc", "#d7191c", "#780050", "#3c0028",
+                                         "#000000", "#000000", "#000000"};
+    static const char *blues[] = {"#eff6fc", "#b9d6ee", "#6aaed6", "#2f7ebc", "#0b4d93"};
+    static const char *kinds[] = {"dynamic", "alpha", "alpha_minus_sd", "alpha_plus_sd", "beta"};
+    static const char *kind_labels[] = {"dynamic runout (along the thalweg)", "alpha runout (Lied and Bakkehoi 1980)",
+                                        "alpha - 1 SD", "alpha + 1 SD", "beta point (10 deg)"};
+    static const char *kind_colours[] = {"#e31a1c", "#ff8c00", "#202020", "#202020", "#ffffff"};
+    static const char *kind_shapes[] = {"circle", "diamond", "square", "square", "triangle"};
+    char zlab[MAXZONES][64];
+    const char *zl[MAXZONES];
+    for (size_t z = 0; z < c->n_zones; ++z) {
+        if (z + 1 < c->n_zones)
+            snprintf(zlab[z], sizeof zlab[z], "%g - %g kPa", c->zones[z], c->zones[z + 1]);
+        else
+            snprintf(zlab[z], sizeof zlab[z], ">= %g kPa", c->zones[z]);
+        zl[z] = zlab[z];
+    }
+    gf_qgis_layer *L = calloc(10 * c->ns + 1, sizeof *L);
+    char(*src)[320] = calloc(10 * c->ns + 1, sizeof *src);
+    char(*nm)[160] = calloc(10 * c->ns + 1, sizeof *nm);
+    if (!L || !src || !nm) die("out of memory");
+    size_t n = 0, shown = 0;
+    for (size_t s = 0; s < c->ns; ++s) {
+        if (!merged[s]) continue;
+        const char *S = c->s[s].name;
+        const int vis = shown++ == 0;
+        char *od = gf_path(j->dir, S);
+#define ADD(style_, file_, layer_, name_)                                                                    \
+    do {                                                                                                      \
+        memset(&L[n], 0, sizeof L[n]);                                                                        \
+        snprintf(src[n], sizeof src[n], "%s/%s", S, file_);                                                   \
+        snprintf(nm[n], sizeof nm[n], "%s: %s", S, name_);                                                    \
+        L[n].group = S, L[n].name = nm[n], L[n].source = src[n], L[n].layer = layer_, L[n].style = style_; \
+    } while (0)
+        if (with_ab) {
+            ADD(GF_QGIS_POINT_KINDS, "outlines.gpkg", "runouts", "alpha-beta and dynamic runouts");
+            L[n].visible = vis, L[n].field = "kind", L[n].nclass = 5, L[n].values = kinds, L[n].labels = kind_labels;
+            L[n].colors = kind_colours, L[n].shapes = kind_shapes, ++n;
+            ADD(GF_QGIS_LINE, "outlines.gpkg", "thalwegs", "thalwegs (steepest descent)");
+            L[n].visible = vis, L[n].color = "#333333", L[n].width = 0.3, L[n].dashed = 1, ++n;
+        }
+        ADD(GF_QGIS_OUTLINE, "outlines.gpkg", "releases", "releases");
+        L[n].visible = vis, L[n].color = "#202020", L[n].width = 0.5, ++n;
+        ADD(GF_QGIS_FILL_CLASSES, "outlines.gpkg", "zones", "pressure zones (polygons)");
+        L[n].field = "class", L[n].nclass = c->n_zones, L[n].labels = zl, L[n].colors = zone_colours, ++n;
+        ADD(GF_QGIS_CLASSES, "zones.tif", NULL, "pressure zones");
+        L[n].visible = vis, L[n].nclass = c->n_zones, L[n].labels = zl, L[n].colors = zone_colours, ++n;
+        const struct {
+            const char *file, *name, *unit;
+            double vmin;
+            int blue;
+        } ramps[] = {{"pressurePeakMax.tif", "largest peak pressure", "kPa", c->threshold, 0},
+                     {"hPeakMax.tif", "largest peak thickness", "m", 0.1, 0},
+                     {"speedPeakMax.tif", "largest peak speed", "m/s", 1.0, 0},
+                     {"count.tif", "releases reaching", "", 0.5, 1},
+                     {"releaseId.tif", "release of the largest pressure", "id", 0, 1}};
+        for (size_t q = 0; q < sizeof ramps / sizeof ramps[0]; ++q) {
+            double mx = raster_max(od, ramps[q].file);
+            if (!(mx > ramps[q].vmin)) mx = ramps[q].vmin + 1;
+            ADD(GF_QGIS_RAMP, ramps[q].file, NULL, ramps[q].name);
+            L[n].vmin = ramps[q].vmin, L[n].vmax = mx, L[n].unit = ramps[q].unit;
+            if (ramps[q].blue) L[n].colors = blues, L[n].ncolor = 5;
+            ++n;
+        }
+#undef ADD
+        free(od);
+    }
+    memset(&L[n], 0, sizeof L[n]);
+    L[n].name = "terrain (hillshade)", L[n].source = dem_path, L[n].style = GF_QGIS_HILLSHADE, L[n].visible = 1;
+    ++n;
+    const double ext[4] = {dem.gt[0], dem.gt[3] + dem.ny * dem.gt[5], dem.gt[0] + dem.nx * dem.gt[1], dem.gt[3]};
+    char *qgs = gf_path(j->dir, "regional.qgs"), title[256];
+    snprintf(title, sizeof title, "granflow regional hazard indication map (gfRegionalMap %s)", gf_version());
+    if (gf_qgis_project_write(qgs, title, dem.wkt, ext, n, L)) die("%s", gf_error_detail());
+    printf("project=%s (%zu layers)\n", qgs, n);
+    free(qgs), free(L), free(src), free(nm), free(dem_path);
+    gf_raster_free(&dem);
 }
 
 /*---------------------------------------------------------------- clipped sub-domains --*/
@@ -1503,6 +1621,14 @@ static void run_release(job *j, size_t r)
             pthread_mutex_unlock(&j->lock);
         }
         if (pool && gf_workers_stop(pool)) fprintf(stderr, "%s: %s\n", prog, gf_error_detail());
+        /* the clip's meshes are done with: every member of this attempt has
+         * its result, and a retry runs on another buffer's clip (its log,
+         * CLIPS/rID_bBUFFER.log, stays; a killed batch leaves the clip, and
+         * resuming uses it) */
+        if (okc && !c->keep) {
+            char *rmc[] = {"rm", "-rf", cd, NULL};
+            if (gf_run(rmc, NULL)) fprintf(stderr, "%s: cannot remove %s\n", prog, cd);
+        }
         free(templ);
         if (!okc || whole) break;
     }
@@ -1866,7 +1992,7 @@ int main(int argc, char **argv)
         j.casedir = casereal;
         j.clips = gf_path(j.dir, "clips");
         mkdir(j.clips, 0755);
-        case_dem(&j, casereal, &j.dem);
+        case_dem(&j, casereal, &j.dem, NULL);
         clip_settings(&j);
     }
 
@@ -2036,7 +2162,7 @@ int main(int argc, char **argv)
     double *sdyn = NULL;
     if (with_ab) {
         gf_raster dem;
-        case_dem(&j, casereal, &dem);
+        case_dem(&j, casereal, &dem, NULL);
         sdyn = malloc(j.nm * sizeof *sdyn);
         if (!sdyn) die("out of memory");
         abr = alpha_beta(&j, &dem, sdyn);
@@ -2050,6 +2176,7 @@ int main(int argc, char **argv)
     }
     ab_free(abr, A.n);
     free(sdyn);
+    write_project(&j, merged, with_ab, casereal);
     const size_t ran_now = torun;
     printf("members=%zu\nran=%zu\nresumed=%zu\nfailed=%zu\nseconds=%.1f\nsecondsPerMember=%.2f\n", j.nm, ran_now,
            resumed, nfailed, wall, nran ? sec_sum / (double)nran : 0.0);
