@@ -1144,7 +1144,7 @@ static void write_project(const job *j, const size_t *merged, int with_ab, const
                      {"hPeakMax.tif", "largest peak thickness", "m", 0.1, 0},
                      {"speedPeakMax.tif", "largest peak speed", "m/s", 1.0, 0},
                      {"count.tif", "releases reaching", "", 0.5, 1},
-                     {"releaseId.tif", "release of the largest pressure", "id", 0, 1}};
+                     {"releaseId.tif", "release of the largest pressure", "id", 0.5, 1}};
         for (size_t q = 0; q < sizeof ramps / sizeof ramps[0]; ++q) {
             double mx = raster_max(od, ramps[q].file);
             if (!(mx > ramps[q].vmin)) mx = ramps[q].vmin + 1;

@@ -113,7 +113,10 @@ def check_crs(project, raster):
     ref = QgsRasterLayer(raster, 'reference')
     if not ref.isValid() or not ref.crs().isValid():
         problem('%s: no raster with a CRS' % raster)
-    elif not project.crs().isValid() or project.crs() != ref.crs():
+    elif not project.crs().isValid() or (project.crs() != ref.crs() and
+                                         project.crs().toProj() != ref.crs().toProj()):
+        # (the same projection under another name - a GeoTIFF of a custom
+        # CRS keeps its parameters, not its name - is the same CRS)
         problem('project CRS %s (%s) is not %s\'s %s' % (project.crs().authid(), project.crs().description(),
                                                         raster, ref.crs().authid()))
     print('crs\t%s\t%s' % (project.crs().authid(), project.crs().description()))
