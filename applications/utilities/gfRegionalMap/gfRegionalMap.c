@@ -930,6 +930,10 @@ static void put_feature(OGRLayerH L, OGRFeatureH f, const char *path)
 static void thalweg_point(const ab_release *T, double s, double *x, double *y)
 {
     const double *q = T->xyzs;
+    if (T->n < 2) {
+        *x = q[0], *y = q[1];
+        return;
+    }
     size_t i = 1;
     while (i + 1 < T->n && q[4 * i + 3] < s) ++i;
     const double s0 = q[4 * (i - 1) + 3], s1 = q[4 * i + 3];
