@@ -1759,6 +1759,9 @@ static void submit(const job *j, const char *dp, const char *casedir, long np, l
     snprintf(outa, sizeof outa, "--output=%s/task_%%a.out", sd);
     snprintf(outc, sizeof outc, "--output=%s/collect.out", sd);
     char *idf = gf_path(sd, "array.jobid"), *idc = gf_path(sd, "collect.jobid");
+    /* (gf_run appends: a submission again into the folder reads its own ids,
+     * and its merge waits for its own array) */
+    unlink(idf), unlink(idc);
     char *sb1[] = {"sbatch", "--parsable", range, outa, arr, NULL};
     if (gf_run(sb1, idf)) die("sbatch %s failed (%s): the scripts are in %s", arr, idf, sd);
     char id1[128] = "";
