@@ -450,7 +450,8 @@ static void downslope_box_walks_through_shallow_pits(void **state)
  * cells on none.  In the valley, cells on both flanks (25, 10) and (5, 10)
  * meet on the floor (15, 10): one floor walk (3 cells for max_flat 12 m),
  * 11 + 3 + 10 cells (the second path ends where it meets the first, in
- * either order).  A NODATA cell of the release is skipped. */
+ * either order: it arrives with more of max_flat used).  A NODATA cell of
+ * the release is skipped. */
 static void downslope_box_of_several_cells_is_the_union(void **state)
 {
     (void)state;
@@ -484,6 +485,17 @@ static void downslope_box_of_several_cells_is_the_union(void **state)
     assert_int_equal(dbox(&r, 2, flanks2, 1, 12, box, &np), GF_SUCCESS);
     assert_box(box, 5, 7, 25, 10);
     assert_int_equal(np, 11 + 3 + 10);
+    /* two cells of one flank, (25, 10) and (25, 8): their floor walks
+     * (max_flat 12 m) reach rows 7 and 5; the second path goes on where it
+     * meets the first with more of max_flat left, so the box is rows 5..10
+     * in either order: 11 + 3 cells of the one, 10 + 2 more of the other */
+    const int same[4] = {25, 10, 25, 8}, same2[4] = {25, 8, 25, 10};
+    assert_int_equal(dbox(&r, 2, same, 1, 12, box, &np), GF_SUCCESS);
+    assert_box(box, 15, 5, 25, 10);
+    assert_int_equal(np, 11 + 3 + 10 + 2);
+    assert_int_equal(dbox(&r, 2, same2, 1, 12, box, &np), GF_SUCCESS);
+    assert_box(box, 15, 5, 25, 10);
+    assert_int_equal(np, 11 + 3 + 10 + 2);
     free(r.z);
 }
 

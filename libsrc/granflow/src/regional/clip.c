@@ -12,9 +12,11 @@
 #include "granflow/regional.h"
 #include "internal.h"
 
-/* a set of cell indices (open addressing, linear probing; SIZE_MAX empty) */
+/* a set of cell indices (open addressing, linear probing; SIZE_MAX empty),
+ * with a value per cell when f is not NULL (the paths' flat distance) */
 typedef struct cellset {
     size_t *v, cap, n;
+    double *f;
 } cellset;
 
 static size_t hash(size_t c)
@@ -25,53 +27,73 @@ static size_t hash(size_t c)
     return c;
 }
 
-static int set_init(cellset *s, size_t want)
+static int set_init(cellset *s, size_t want, int values)
 {
     s->cap = 64;
     while (s->cap < 2 * want) s->cap *= 2;
     s->n = 0;
     s->v = malloc(s->cap * sizeof *s->v);
-    if (!s->v) return -1;
+    s->f = values ? malloc(s->cap * sizeof *s->f) : NULL;
+    if (!s->v || (values && !s->f)) return -1;
     memset(s->v, 0xff, s->cap * sizeof *s->v);
     return 0;
 }
 
-static int set_has(const cellset *s, size_t c)
+static void set_free(cellset *s)
+{
+    free(s->v), free(s->f);
+    s->v = NULL, s->f = NULL;
+}
+
+/* the slot of c, or -1 when c is not in the set */
+static long set_slot(const cellset *s, size_t c)
 {
     for (size_t i = hash(c) & (s->cap - 1);; i = (i + 1) & (s->cap - 1)) {
-        if (s->v[i] == c) return 1;
-        if (s->v[i] == (size_t)-1) return 0;
+        if (s->v[i] == c) return (long)i;
+        if (s->v[i] == (size_t)-1) return -1;
     }
 }
 
-static int set_add(cellset *s, size_t c); /* 1 added, 0 there, -1 no memory */
+static int set_has(const cellset *s, size_t c) { return set_slot(s, c) >= 0; }
+
+static int set_put(cellset *s, size_t c, double f); /* 1 added, 0 there (value set), -1 no memory */
 
 static int set_grow(cellset *s)
 {
     cellset t;
     t.cap = 2 * s->cap, t.n = 0;
     t.v = malloc(t.cap * sizeof *t.v);
-    if (!t.v) return -1;
+    t.f = s->f ? malloc(t.cap * sizeof *t.f) : NULL;
+    if (!t.v || (s->f && !t.f)) {
+        free(t.v), free(t.f);
+        return -1;
+    }
     memset(t.v, 0xff, t.cap * sizeof *t.v);
     for (size_t i = 0; i < s->cap; ++i)
-        if (s->v[i] != (size_t)-1) set_add(&t, s->v[i]);
-    free(s->v);
+        if (s->v[i] != (size_t)-1) set_put(&t, s->v[i], s->f ? s->f[i] : 0);
+    set_free(s);
     *s = t;
     return 0;
 }
 
-static int set_add(cellset *s, size_t c)
+static int set_put(cellset *s, size_t c, double f)
 {
     if (2 * (s->n + 1) > s->cap && set_grow(s)) return -1;
     for (size_t i = hash(c) & (s->cap - 1);; i = (i + 1) & (s->cap - 1)) {
-        if (s->v[i] == c) return 0;
+        if (s->v[i] == c) {
+            if (s->f) s->f[i] = f;
+            return 0;
+        }
         if (s->v[i] == (size_t)-1) {
             s->v[i] = c;
+            if (s->f) s->f[i] = f;
             ++s->n;
             return 1;
         }
     }
 }
+
+static int set_add(cellset *s, size_t c) { return set_put(s, c, 0); }
 
 static void set_clear(cellset *s)
 {
@@ -117,9 +139,9 @@ gf_status gf_downslope_box(const gf_raster *dem, size_t n, const size_t *cells, 
     const size_t nc = (size_t)dem->nx * (size_t)dem->ny;
     box[0] = box[1] = 1 << 30;
     box[2] = box[3] = -1;
-    cellset rel, all, path;
-    if (set_init(&rel, n) || set_init(&all, 4 * n + 64) || set_init(&path, 256)) {
-        free(rel.v), free(all.v), free(path.v);
+    cellset rel = {0}, all = {0}, path = {0};
+    if (set_init(&rel, n, 0) || set_init(&all, 4 * n + 64, 1) || set_init(&path, 256, 0)) {
+        set_free(&rel), set_free(&all), set_free(&path);
         return gf_fail(GF_ENOMEM, "downslope box: %zu cells", n);
     }
     gf_status st = GF_SUCCESS;
@@ -148,16 +170,20 @@ gf_status gf_downslope_box(const gf_raster *dem, size_t n, const size_t *cells, 
         if (e0 >= 0 && set_has(&rel, (size_t)e0)) continue;
         /* the walk of gf_thalweg_d8 (pits up to max_climb walked through, level
          * ground followed for max_flat); it ends where an earlier path of this
-         * release went on */
+         * release went on with as much of max_flat left (all holds each
+         * cell's smallest flat distance so far: the box does not depend on
+         * the order of the cells) */
         set_clear(&path);
         int col = (int)(c0 % (size_t)dem->nx), row = (int)(c0 / (size_t)dem->nx), pa = 0, pb = 0;
         double s = 0, zlow = INFINITY, s_low = 0;
         for (;;) {
             const size_t c = (size_t)row * (size_t)dem->nx + (size_t)col;
-            if (c != c0 && set_has(&all, c)) break;
-            if (set_add(&path, c) < 0 || set_add(&all, c) < 0) goto nomem;
-            grow_box(box, col, row);
             if (dem->z[c] < zlow) zlow = dem->z[c], s_low = s;
+            const double flat = s - s_low;
+            const long slot = set_slot(&all, c);
+            if (c != c0 && slot >= 0 && all.f[slot] <= flat) break;
+            if (set_add(&path, c) < 0 || set_put(&all, c, flat) < 0) goto nomem;
+            grow_box(box, col, row);
             if (path.n >= nc || s - s_low > max_flat) break;
             double best = 0, bd = 0, lowest = INFINITY, ld = 0;
             int bi = -1, bj = -1, li = -1, lj = -1;
@@ -188,6 +214,6 @@ gf_status gf_downslope_box(const gf_raster *dem, size_t n, const size_t *cells, 
 nomem:
     st = gf_fail(GF_ENOMEM, "downslope box: the paths of %zu cells", n);
 done:
-    free(rel.v), free(all.v), free(path.v);
+    set_free(&rel), set_free(&all), set_free(&path);
     return st;
 }
