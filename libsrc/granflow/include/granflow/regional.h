@@ -198,11 +198,13 @@ gf_status gf_thalweg_d8(const gf_raster *dem, int col, int row, double max_climb
  * whose steepest lower neighbour is not a release cell (or that has none), the
  * walk of gf_thalweg_d8 (pits up to max_climb [m] walked through, level
  * ground followed for max_flat [m] without a new lowest point), ending also
- * where it meets an earlier path of the release.  The cost is that of the
- * release's cells and paths, not of the grid (no array of the grid's size).
- * path_cells (may be NULL): the cells on the paths.  The caller adds the
- * buffer.  Refused: no valid cell, a cell outside the grid, max_climb or
- * max_flat < 0 or not finite. */
+ * where it meets an earlier path of the release that had as much of max_flat
+ * left there (the box does not depend on the order of the cells).  The cost
+ * is that of the release's cells and paths, not of the grid (no array of the
+ * grid's size).  path_cells (may be NULL): the cells on the paths.  The
+ * caller adds the buffer.  Refused (GF_EDOM): no valid cell, a cell outside
+ * the grid, max_climb or max_flat < 0 or not finite; (GF_EINVAL) no DEM,
+ * cells or box. */
 gf_status gf_downslope_box(const gf_raster *dem, size_t n, const size_t *cells, double max_climb, double max_flat,
                            int box[4], size_t *path_cells);
 
