@@ -24,6 +24,8 @@
  *     measured          normal;       // the depth normal to the terrain, or vertical (default normal)
  *     threshold         1;            // peak pressure [kPa] of a reached cell (count, area; default 1)
  *     zones             (1 10 30);    // peak pressure class limits [kPa], increasing (default (1 10 30))
+ *     memberFiles       maps;         // maps: a member keeps its log, peak rasters (GeoTIFF), outline,
+ *                                     // path, mass.csv, summary.dat; all: every file of its run (default maps)
  *     scenarios
  *     {
  *         small { d0Star 0.5; }                   // d0 = (d0* + gradient (z - zRef)) f(slope)
@@ -179,6 +181,7 @@ typedef struct config {
     long *only;         /* releases (ids), or NULL */
     size_t n_only;
     int vertical;
+    int all_files;      /* memberFiles all: keep every file of a member's run */
     double threshold;
     double zones[MAXZONES];
     size_t n_zones;
@@ -238,6 +241,10 @@ static void read_config(const char *path, const char *casedir, config *c)
     if (strcmp(m, "normal") && strcmp(m, "vertical"))
         gf_dict_refuse(c->path, gf_dict_find(D, "measured"), "measured", "'%s': allowed normal or vertical", m);
     c->vertical = strcmp(m, "vertical") == 0;
+    const char *mf = gf_dict_word(D, "memberFiles", "maps", 63);
+    if (strcmp(mf, "maps") && strcmp(mf, "all"))
+        gf_dict_refuse(c->path, gf_dict_find(D, "memberFiles"), "memberFiles", "'%s': allowed maps or all", mf);
+    c->all_files = strcmp(mf, "all") == 0;
     c->threshold = gf_dict_number(D, "threshold", 1, 1e-6, 1e6);
     e = gf_dict_find(D, "zones");
     if (e) {
@@ -302,7 +309,7 @@ static void read_config(const char *path, const char *casedir, config *c)
         gf_dict_key_path(in, u->key, full, sizeof full);
         gf_dict_refuse(c->path, u, full,
             "unknown key (allowed: releaseAreas idAttribute releases slopeAttribute altitudeAttribute gradient zRef "
-            "measured threshold zones scenarios clip; a scenario: d0Star gradient zRef, or thicknessAttribute factor; "
+            "measured threshold zones memberFiles scenarios clip; a scenario: d0Star gradient zRef, or thicknessAttribute factor; "
             "clip: buffer reach climb retries keep)");
     }
     gf_dict_free(D);
@@ -621,6 +628,29 @@ static int score(const job *j, const char *md, member *m, char *why, size_t wsiz
     return 0;
 }
 
+/* memberFiles maps: what a member's run wrote beyond what the merge, the
+ * alpha-beta and a look at the run need goes (the start fields 0/, the
+ * ASCII copies of the rasters, the end thickness and arrival-time rasters,
+ * the centre-of-mass series); kept: the log, the peak rasters (GeoTIFF), the
+ * affected-area outline, the centre-of-mass path, mass.csv and summary.dat */
+static void slim_member(const job *j, const char *md)
+{
+    if (j->c->all_files) return;
+    char *zero = gf_path(md, "0"), *com = gf_path(md, "postProcessing/centreOfMass");
+    char *rm[] = {"rm", "-rf", zero, com, NULL};
+    gf_run(rm, NULL);
+    free(zero), free(com);
+    static const char *gone[] = {"hPeak.asc", "speedPeak.asc", "pressurePeak.asc", "thickness.asc", "thickness.tif",
+                                 "arrivalTime.asc", "arrivalTime.tif"};
+    for (size_t k = 0; k < sizeof gone / sizeof gone[0]; ++k) {
+        char rel[128];
+        snprintf(rel, sizeof rel, "postProcessing/hazardMaps/%s", gone[k]);
+        char *f = gf_path(md, rel);
+        unlink(f);
+        free(f);
+    }
+}
+
 static void *runner(void *arg)
 {
     job *j = arg;
@@ -640,6 +670,7 @@ static void *runner(void *arg)
             if (gf_workers_run(j->pool, md, &ok, why, sizeof why)) die("%s", gf_error_detail());
             if (ok && score(j, md, m, why, sizeof why)) ok = 0;
             gf_remove_times(md);
+            slim_member(j, md);
         }
         m->ok = ok;
         m->seconds = now() - t;
@@ -1602,6 +1633,7 @@ static void run_release(job *j, size_t r)
                 }
                 if (ok) m->edge = reaches_clip_edge(j, md, box);
                 gf_remove_times(md);
+                slim_member(j, md);
             }
             m->ok = ok;
             m->seconds = now() - t;
