@@ -630,8 +630,8 @@ static int score(const job *j, const char *md, member *m, char *why, size_t wsiz
 
 /* memberFiles maps: what a member's run wrote beyond what the merge, the
  * alpha-beta and a look at the run need goes (the start fields 0/, the
- * ASCII copies of the rasters, the end thickness and arrival-time rasters,
- * the centre-of-mass series); kept: the log, the peak rasters (GeoTIFF), the
+ * ASCII copies of the rasters with their .prj, the end thickness and
+ * arrival-time rasters, the centre-of-mass series); kept: the log, the peak rasters (GeoTIFF), the
  * affected-area outline, the centre-of-mass path, mass.csv and summary.dat */
 static void slim_member(const job *j, const char *md)
 {
@@ -641,7 +641,8 @@ static void slim_member(const job *j, const char *md)
     gf_run(rm, NULL);
     free(zero), free(com);
     static const char *gone[] = {"hPeak.asc", "speedPeak.asc", "pressurePeak.asc", "thickness.asc", "thickness.tif",
-                                 "arrivalTime.asc", "arrivalTime.tif"};
+                                 "arrivalTime.asc", "arrivalTime.tif", "hPeak.prj", "speedPeak.prj",
+                                 "pressurePeak.prj", "thickness.prj", "arrivalTime.prj"};
     for (size_t k = 0; k < sizeof gone / sizeof gone[0]; ++k) {
         char rel[128];
         snprintf(rel, sizeof rel, "postProcessing/hazardMaps/%s", gone[k]);
