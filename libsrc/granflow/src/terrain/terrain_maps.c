@@ -75,6 +75,32 @@ static void close_band_and_layer(GDALDatasetH out, GDALDatasetH vmem, GDALDatase
         OSRDestroySpatialReference(srs);
 }
 
+/* values (of type t, 0 where nothing is) on grid polygonized by GDAL: each
+ * 4-connected group of pixels of one non-zero value a polygon of an
+ * in-memory layer *ml (its value in field 0), and the output dataset *out
+ * made at path by the driver drv (the file replaced); what made it is
+ * returned for close_band_and_layer */
+static gf_status polygonize_into(const char *what, const char *path, const gf_raster *grid, void *values,
+                                 GDALDataType t, GDALDriverH drv, GDALDatasetH *mem, GDALDatasetH *vmem, OGRLayerH *ml,
+                                 OGRSpatialReferenceH *srs, GDALDatasetH *out)
+{
+    GDALRasterBandH b = NULL;
+    gf_status st = band_and_layer(what, path, grid, values, t, "polygons", wkbPolygon, mem, &b, vmem, ml, srs);
+    if (st)
+        return st;
+    OGRFieldDefnH fd = OGR_Fld_Create("value", OFTInteger);
+    OGR_L_CreateField(*ml, fd, TRUE);
+    OGR_Fld_Destroy(fd);
+    /* the band as its own mask: 0 makes no polygon */
+    if (GDALPolygonize(b, b, *ml, 0, NULL, NULL, NULL) != CE_None)
+        return gf_fail(GF_EIO, "%s %s: polygonize failed (%s)", what, path, gf_terrain_gdal_msg());
+    unlink(path);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    *out = GDALCreate(drv, path, 0, 0, 0, GDT_Unknown, NULL);
+    CPLPopErrorHandler();
+    return *out ? GF_SUCCESS : gf_fail(GF_EIO, "%s %s: GDAL cannot write it (%s)", what, path, gf_terrain_gdal_msg());
+}
+
 gf_status gf_raster_outline(const char *path, const gf_raster *grid, const double *values,
                             double threshold, double *area)
 {
@@ -91,29 +117,14 @@ gf_status gf_raster_outline(const char *path, const gf_raster *grid, const doubl
     if (area)
         *area = (double)count * grid->gt[1] * -grid->gt[5];
     GDALDatasetH mem = NULL, vmem = NULL, out = NULL;
-    GDALRasterBandH b = NULL;
     OGRLayerH ml = NULL;
     OGRSpatialReferenceH srs = NULL;
     GDALDriverH gj = GDALGetDriverByName("GeoJSON");
-    gf_status st = band_and_layer("outline", path, grid, mask, GDT_Byte, "mask", wkbPolygon, &mem, &b, &vmem, &ml, &srs);
+    /* only the affected pixels become polygons */
+    gf_status st = gj ? polygonize_into("outline", path, grid, mask, GDT_Byte, gj, &mem, &vmem, &ml, &srs, &out)
+                      : gf_fail(GF_EIO, "outline %s: GDAL lacks the GeoJSON driver", path);
     if (st)
         goto done;
-    OGRFieldDefnH fd = OGR_Fld_Create("value", OFTInteger);
-    OGR_L_CreateField(ml, fd, TRUE);
-    OGR_Fld_Destroy(fd);
-    /* the mask band as its own mask: only the affected pixels become polygons */
-    if (GDALPolygonize(b, b, ml, 0, NULL, NULL, NULL) != CE_None) {
-        st = gf_fail(GF_EIO, "outline %s: polygonize failed (%s)", path, gf_terrain_gdal_msg());
-        goto done;
-    }
-    unlink(path);
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    out = GDALCreate(gj, path, 0, 0, 0, GDT_Unknown, NULL);
-    CPLPopErrorHandler();
-    if (!out) {
-        st = gf_fail(GF_EIO, "outline %s: GDAL cannot write it (%s)", path, gf_terrain_gdal_msg());
-        goto done;
-    }
     OGRLayerH ol = GDALDatasetCreateLayer(out, "affected_area", srs, wkbPolygon, srs ? rfc7946 : NULL);
     OGRFieldDefnH fa = OGR_Fld_Create("area_m2", OFTReal);
     OGRFieldDefnH ft = OGR_Fld_Create("threshold", OFTReal);
@@ -183,27 +194,14 @@ gf_status gf_class_outlines(const char *path, const char *layer, const gf_raster
         v[i] = isfinite(c) && c >= 1 && c <= (double)nclass && c == floor(c) ? (int)c : 0;
     }
     GDALDatasetH mem = NULL, vmem = NULL, out = NULL;
-    GDALRasterBandH b = NULL;
     OGRLayerH ml = NULL;
     OGRSpatialReferenceH srs = NULL;
     size_t count = 0;
-    gf_status st = band_and_layer("class outlines", path, grid, v, GDT_Int32, "classes", wkbPolygon, &mem, &b, &vmem,
-                                  &ml, &srs);
+    /* class 0 makes no polygon */
+    gf_status st = polygonize_into("class outlines", path, grid, v, GDT_Int32, gp, &mem, &vmem, &ml, &srs, &out);
     if (st)
         goto done;
-    OGRFieldDefnH fd = OGR_Fld_Create("class", OFTInteger);
-    OGR_L_CreateField(ml, fd, TRUE);
-    OGR_Fld_Destroy(fd);
-    /* the band as its own mask: class 0 makes no polygon */
-    if (GDALPolygonize(b, b, ml, 0, NULL, NULL, NULL) != CE_None) {
-        st = gf_fail(GF_EIO, "class outlines %s: polygonize failed (%s)", path, gf_terrain_gdal_msg());
-        goto done;
-    }
-    unlink(path);
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    out = GDALCreate(gp, path, 0, 0, 0, GDT_Unknown, NULL);
-    CPLPopErrorHandler();
-    OGRLayerH ol = out ? GDALDatasetCreateLayer(out, layer, srs, wkbPolygon, NULL) : NULL;
+    OGRLayerH ol = GDALDatasetCreateLayer(out, layer, srs, wkbPolygon, NULL);
     if (!ol) {
         st = gf_fail(GF_EIO, "class outlines %s: GDAL cannot write it (%s)", path, gf_terrain_gdal_msg());
         goto done;
