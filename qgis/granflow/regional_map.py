@@ -41,11 +41,11 @@ The dictionary is checked first (<code>gfRegionalMap -check</code>: a bad key, v
 refused in its words before anything runs).</p>
 <p>Writes into the output folder, per scenario, pressurePeakMax.tif, hPeakMax.tif, speedPeakMax.tif
 (each cell's largest peak over the releases), count.tif (the releases reaching the cell), releaseId.tif
-(the release giving its largest pressure), zones.tif (the pressure classes), outlines.gpkg (the zones as polygons, the releases with their
-status, with ALPHA_BETA each release's thalweg and its alpha-beta and dynamic runout points), and
-members.csv, summary.txt, regional.qgs (a QGIS project of all of it, styled; with ALPHA_BETA
-alphaBeta.csv). Every scenario's maps, releases and runout points and the release polygons are
-loaded. Run again with the same parameters into the same folder, a cancelled or killed batch
+(the release giving its largest pressure), zones.tif (the pressure classes), outlines.gpkg (the
+zones as polygons, the releases with their status, with ALPHA_BETA each release's thalweg and its
+alpha-beta and dynamic runout points), and members.csv, summary.txt, regional.qgs (a QGIS project
+of all of it, styled; with ALPHA_BETA alphaBeta.csv). Every scenario's maps, releases and runout
+points and the release polygons are loaded. Run again with the same parameters into the same folder, a cancelled or killed batch
 resumes. Failed members (exit status 3) are a result: a warning lists them, the maps merge the
 others.</p>'''
 
