@@ -15,6 +15,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -210,9 +211,21 @@ static void symbol(FILE *f, size_t name, const char *type, const char *cls, cons
     fputs("            </layer>\n          </symbol>\n", f);
 }
 
-static void rgba(char *v, size_t n, const int rgb[3], int alpha)
+/* property k = the printf of fmt appended to p (np of them) */
+__attribute__((format(printf, 4, 5))) static void put(prop *p, size_t *np, const char *k, const char *fmt, ...)
 {
-    snprintf(v, n, "%d,%d,%d,%d", rgb[0], rgb[1], rgb[2], alpha);
+    va_list ap;
+    va_start(ap, fmt);
+    p[*np].k = k;
+    vsnprintf(p[*np].v, sizeof p[*np].v, fmt, ap);
+    va_end(ap);
+    ++*np;
+}
+
+/* a colour property: r,g,b,alpha */
+static void put_rgba(prop *p, size_t *np, const char *k, const int rgb[3], int alpha)
+{
+    put(p, np, k, "%d,%d,%d,%d", rgb[0], rgb[1], rgb[2], alpha);
 }
 
 static double width_or(double w, double dflt) { return w > 0 ? w : dflt; }
@@ -229,19 +242,13 @@ static void vector_renderer(FILE *f, const gf_qgis_layer *l)
         prop p[6];
         size_t np = 0;
         const int poly = l->style == GF_QGIS_OUTLINE;
-        p[np].k = poly ? "outline_color" : "line_color";
-        rgba(p[np++].v, sizeof p[0].v, rgb, 255);
-        p[np].k = poly ? "outline_width" : "line_width";
-        snprintf(p[np++].v, sizeof p[0].v, "%.6g", width_or(l->width, 0.26));
-        p[np].k = poly ? "outline_width_unit" : "line_width_unit";
-        snprintf(p[np++].v, sizeof p[0].v, "MM");
-        p[np].k = poly ? "outline_style" : "line_style";
-        snprintf(p[np++].v, sizeof p[0].v, "%s", l->dashed ? "dash" : "solid");
+        put_rgba(p, &np, poly ? "outline_color" : "line_color", rgb, 255);
+        put(p, &np, poly ? "outline_width" : "line_width", "%.6g", width_or(l->width, 0.26));
+        put(p, &np, poly ? "outline_width_unit" : "line_width_unit", "MM");
+        put(p, &np, poly ? "outline_style" : "line_style", "%s", l->dashed ? "dash" : "solid");
         if (poly) {
-            p[np].k = "style";
-            snprintf(p[np++].v, sizeof p[0].v, "no");
-            p[np].k = "color";
-            rgba(p[np++].v, sizeof p[0].v, rgb, 0);
+            put(p, &np, "style", "no");
+            put_rgba(p, &np, "color", rgb, 0);
         }
         symbol(f, 0, poly ? "fill" : "line", poly ? "SimpleFill" : "SimpleLine", p, np);
         fputs("        </symbols>\n      </renderer-v2>\n", f);
@@ -271,32 +278,20 @@ static void vector_renderer(FILE *f, const gf_qgis_layer *l)
             /* the fill at 50 % opacity (alpha 128 of 255), the outline the
              * colour at 60 % brightness, opaque */
             const int dark[3] = {rgb[0] * 3 / 5, rgb[1] * 3 / 5, rgb[2] * 3 / 5};
-            p[np].k = "color";
-            rgba(p[np++].v, sizeof p[0].v, rgb, 128);
-            p[np].k = "style";
-            snprintf(p[np++].v, sizeof p[0].v, "solid");
-            p[np].k = "outline_color";
-            rgba(p[np++].v, sizeof p[0].v, dark, 255);
-            p[np].k = "outline_style";
-            snprintf(p[np++].v, sizeof p[0].v, "solid");
-            p[np].k = "outline_width";
-            snprintf(p[np++].v, sizeof p[0].v, "0.4");
-            p[np].k = "outline_width_unit";
-            snprintf(p[np++].v, sizeof p[0].v, "MM");
+            put_rgba(p, &np, "color", rgb, 128);
+            put(p, &np, "style", "solid");
+            put_rgba(p, &np, "outline_color", dark, 255);
+            put(p, &np, "outline_style", "solid");
+            put(p, &np, "outline_width", "0.4");
+            put(p, &np, "outline_width_unit", "MM");
             symbol(f, c, "fill", "SimpleFill", p, np);
         } else {
-            p[np].k = "color";
-            rgba(p[np++].v, sizeof p[0].v, rgb, 255);
-            p[np].k = "name";
-            snprintf(p[np++].v, sizeof p[0].v, "%s", l->shapes[c]);
-            p[np].k = "size";
-            snprintf(p[np++].v, sizeof p[0].v, "%.6g", width_or(l->width, 3));
-            p[np].k = "size_unit";
-            snprintf(p[np++].v, sizeof p[0].v, "MM");
-            p[np].k = "outline_color";
-            snprintf(p[np++].v, sizeof p[0].v, "35,35,35,255");
-            p[np].k = "outline_width";
-            snprintf(p[np++].v, sizeof p[0].v, "0.2");
+            put_rgba(p, &np, "color", rgb, 255);
+            put(p, &np, "name", "%s", l->shapes[c]);
+            put(p, &np, "size", "%.6g", width_or(l->width, 3));
+            put(p, &np, "size_unit", "MM");
+            put(p, &np, "outline_color", "35,35,35,255");
+            put(p, &np, "outline_width", "0.2");
             symbol(f, c, "marker", "SimpleMarker", p, np);
         }
     }
