@@ -475,7 +475,8 @@ typedef struct job {
     size_t next, finished, total;
     double t0;
     /* clipped runs */
-    gf_raster dem;           /* the case's DEM: the region's grid */
+    gf_raster dem;           /* the case's DEM: the region's grid (case_dem) */
+    char *dem_path;          /* its file */
     int coarsen;
     double depth_slab;
     char *casedir, *clips;
@@ -781,8 +782,9 @@ static size_t merge(const job *j, size_t s, char *outdir)
 /*---------------------------------------------------------------- -alphaBeta --*/
 
 /* the DEM of the case (constant/terrainProperties dem, relative to the case) */
-static void case_dem(const job *j, const char *casedir, gf_raster *dem, char **dem_path)
+static void case_dem(job *j, const char *casedir)
 {
+    if (j->dem.z) return; /* read once: the clips, alpha-beta and the project use it */
     /* the value through foamDictionary, into a file of this process (array
      * tasks of one batch run at once) */
     char *tp = gf_path(casedir, "constant/terrainProperties"), *val = NULL;
@@ -800,11 +802,8 @@ static void case_dem(const job *j, const char *casedir, gf_raster *dem, char **d
     while (*b == '"' || *b == ' ') ++b;
     while (e > b && (e[-1] == '"' || e[-1] == ' ')) *--e = 0;
     char *path = b[0] == '/' ? strdup(b) : gf_path(casedir, b);
-    if (gf_raster_read(path, dem)) die("the case's DEM %s: %s", path, gf_error_detail());
-    if (dem_path)
-        *dem_path = path;
-    else
-        free(path);
+    if (gf_raster_read(path, &j->dem)) die("the case's DEM %s: %s", path, gf_error_detail());
+    j->dem_path = path;
     free(tp), free(val);
 }
 
@@ -1119,12 +1118,10 @@ static double raster_max(const char *dir, const char *name)
  * cell and the release of the largest pressure; under them the case's DEM
  * as a hillshade.  Paths relative to DIR (the folder can move), the DEM's
  * absolute. */
-static void write_project(const job *j, const size_t *merged, int with_ab, const char *casedir)
+static void write_project(const job *j, const size_t *merged, int with_ab)
 {
     const config *c = j->c;
-    gf_raster dem;
-    char *dem_path = NULL;
-    case_dem(j, casedir, &dem, &dem_path);
+    const gf_raster *dem = &j->dem;
     static const char *zone_colours[] = {"#ffdd00", "#1e6edc", "#d7191c", "#780050", "#3c0028",
                                          "#000000", "#000000", "#000000"};
     static const char *blues[] = {"#eff6fc", "#b9d6ee", "#6aaed6", "#2f7ebc", "#0b4d93"};
@@ -1193,15 +1190,14 @@ static void write_project(const job *j, const size_t *merged, int with_ab, const
         free(od);
     }
     memset(&L[n], 0, sizeof L[n]);
-    L[n].name = "terrain (hillshade)", L[n].source = dem_path, L[n].style = GF_QGIS_HILLSHADE, L[n].visible = 1;
+    L[n].name = "terrain (hillshade)", L[n].source = j->dem_path, L[n].style = GF_QGIS_HILLSHADE, L[n].visible = 1;
     ++n;
-    const double ext[4] = {dem.gt[0], dem.gt[3] + dem.ny * dem.gt[5], dem.gt[0] + dem.nx * dem.gt[1], dem.gt[3]};
+    const double ext[4] = {dem->gt[0], dem->gt[3] + dem->ny * dem->gt[5], dem->gt[0] + dem->nx * dem->gt[1], dem->gt[3]};
     char *qgs = gf_path(j->dir, "regional.qgs"), title[256];
     snprintf(title, sizeof title, "granflow regional hazard indication map (gfRegionalMap %s)", gf_version());
-    if (gf_qgis_project_write(qgs, title, dem.wkt, ext, n, L)) die("%s", gf_error_detail());
+    if (gf_qgis_project_write(qgs, title, dem->wkt, ext, n, L)) die("%s", gf_error_detail());
     printf("project=%s (%zu layers)\n", qgs, n);
-    free(qgs), free(L), free(src), free(nm), free(dem_path);
-    gf_raster_free(&dem);
+    free(qgs), free(L), free(src), free(nm);
 }
 
 /*---------------------------------------------------------------- clipped sub-domains --*/
@@ -1866,6 +1862,7 @@ static void free_all(config *c, areas *A, job *j, char *casereal, char *dp)
     free(j->m), free(j->dir), free(j->templ), free(j->members);
     free(j->clips);
     if (j->dem.z) gf_raster_free(&j->dem);
+    free(j->dem_path);
     free(casereal), free(dp);
 }
 
@@ -2032,7 +2029,7 @@ int main(int argc, char **argv)
         j.casedir = casereal;
         j.clips = gf_path(j.dir, "clips");
         mkdir(j.clips, 0755);
-        case_dem(&j, casereal, &j.dem, NULL);
+        case_dem(&j, casereal);
         clip_settings(&j);
     }
 
@@ -2200,13 +2197,11 @@ int main(int argc, char **argv)
     /* alpha-beta beside the dynamic runouts, and the outlines */
     ab_release *abr = NULL;
     double *sdyn = NULL;
+    case_dem(&j, casereal); /* (the clips' already) */
     if (with_ab) {
-        gf_raster dem;
-        case_dem(&j, casereal, &dem, NULL);
         sdyn = malloc(j.nm * sizeof *sdyn);
         if (!sdyn) die("out of memory");
-        abr = alpha_beta(&j, &dem, sdyn);
-        gf_raster_free(&dem);
+        abr = alpha_beta(&j, &j.dem, sdyn);
     }
     for (size_t s = 0; s < c.ns; ++s) {
         if (!merged[s]) continue;
@@ -2216,7 +2211,7 @@ int main(int argc, char **argv)
     }
     ab_free(abr, A.n);
     free(sdyn);
-    write_project(&j, merged, with_ab, casereal);
+    write_project(&j, merged, with_ab);
     const size_t ran_now = torun;
     printf("members=%zu\nran=%zu\nresumed=%zu\nfailed=%zu\nseconds=%.1f\nsecondsPerMember=%.2f\n", j.nm, ran_now,
            resumed, nfailed, wall, nran ? sec_sum / (double)nran : 0.0);
